@@ -1,0 +1,259 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
+#ifndef CGAL_BLENDED_SHAPE_CHART_MESH_H
+#define CGAL_BLENDED_SHAPE_CHART_MESH_H
+
+#include <CGAL/Blended_shape/Chart_domain.h>
+
+#include <CGAL/Surface_mesh.h>
+
+#include <array>
+#include <cmath>
+#include <sstream>
+#include <stdexcept>
+#include <vector>
+
+namespace CGAL {
+namespace Blended_shapes {
+
+/*!
+\ingroup PkgBlendedShapeCharts
+
+The tessellation of one chart domain: a `CGAL::Surface_mesh` whose vertices
+carry their chart coordinates (property `"v:chart_point"`) and whose points are
+positions in space, set from any map of chart points (set_positions()).
+
+The connectivity is made once; only the positions change while a model
+deforms. Each face knows its chart, so a point on a face (barycentric
+coordinates) maps back to a chart point (chart_point(face, ...)), which is how
+closest points found on the mesh are turned into exact domain points.
+
+- Disk charts follow a subdivided octahedron (paper Fig. 30): ring `j` of
+  `4 j` vertices at radius `j / resolution` up to radius 1, then margin rings
+  up to the domain radius; the triangles are near-equilateral everywhere,
+  also at the centre (the pole), where a latitude-longitude grid would have
+  slivers. Euler characteristic 1.
+- Torus charts are a `4 resolution` x `max(3, 2 resolution)` periodic grid, closed
+  (Euler characteristic 0); chart coordinates of a face are unwrapped across
+  the seams when interpolated.
+*/
+template <class GeomTraits>
+class Chart_mesh
+{
+public:
+  typedef GeomTraits Geom_traits;
+  typedef typename Geom_traits::Point_3 Point_3;
+  typedef CGAL::Surface_mesh<Point_3> Mesh;
+  typedef typename Mesh::Vertex_index vertex_descriptor;
+  typedef typename Mesh::Face_index face_descriptor;
+  typedef std::array<double, 2> Chart_coordinates;
+  typedef typename Mesh::template Property_map<vertex_descriptor, Chart_coordinates> Chart_coordinate_map;
+
+  /// \throws std::invalid_argument if `resolution < 1` or the domain is empty.
+  Chart_mesh(std::size_t chart_index, const Chart_domain& domain, int resolution)
+    : m_chart(chart_index), m_domain(domain)
+  {
+    if(resolution < 1 || resolution > 4096)
+    {
+      std::ostringstream msg;
+      msg << "Chart_mesh: resolution " << resolution << " is not in [1, 4096]";
+      throw std::invalid_argument(msg.str());
+    }
+    m_uv = m_mesh.template add_property_map<vertex_descriptor, Chart_coordinates>(
+             "v:chart_point", Chart_coordinates{{0., 0.}}).first;
+    if(domain.kind == Chart_kind::Disk)
+      build_disk(resolution);
+    else
+      build_torus(resolution);
+  }
+
+  // The chart-coordinate map is a handle into the mesh's own property
+  // storage: copies and moves must fetch it again from the new mesh.
+  Chart_mesh(const Chart_mesh& other)
+    : m_chart(other.m_chart), m_domain(other.m_domain), m_mesh(other.m_mesh)
+  { attach_chart_coordinates(); }
+  Chart_mesh(Chart_mesh&& other) noexcept
+    : m_chart(other.m_chart), m_domain(other.m_domain), m_mesh(std::move(other.m_mesh))
+  { attach_chart_coordinates(); }
+  Chart_mesh& operator=(Chart_mesh other) noexcept
+  {
+    m_chart = other.m_chart;
+    m_domain = other.m_domain;
+    m_mesh = std::move(other.m_mesh);
+    attach_chart_coordinates();
+    return *this;
+  }
+
+  const Mesh& mesh() const { return m_mesh; }
+  std::size_t chart_index() const { return m_chart; }
+  const Chart_domain& domain() const { return m_domain; }
+  Chart_coordinate_map chart_coordinate_map() const { return m_uv; }
+
+  Chart_point chart_point(vertex_descriptor v) const
+  {
+    const Chart_coordinates& c = m_uv[v];
+    return Chart_point(m_chart, c[0], c[1]);
+  }
+
+  /// The three vertices of `f` in the order barycentric coordinates refer to:
+  /// source, target and next target of `halfedge(f)` (the order of
+  /// `CGAL::Polygon_mesh_processing::Face_location`).
+  std::array<vertex_descriptor, 3> face_vertices(face_descriptor f) const
+  {
+    const auto h = m_mesh.halfedge(f);
+    return {{m_mesh.source(h), m_mesh.target(h), m_mesh.target(m_mesh.next(h))}};
+  }
+
+  /// The chart point at barycentric coordinates `b` of face `f`.
+  Chart_point chart_point(face_descriptor f, const std::array<double, 3>& b) const
+  {
+    const std::array<vertex_descriptor, 3> v = face_vertices(f);
+    std::array<Chart_coordinates, 3> c = {{m_uv[v[0]], m_uv[v[1]], m_uv[v[2]]}};
+    unwrap(c);
+    return Chart_point(m_chart,
+                       b[0] * c[0][0] + b[1] * c[1][0] + b[2] * c[2][0],
+                       b[0] * c[0][1] + b[1] * c[1][1] + b[2] * c[2][1]);
+  }
+
+  /// Chart coordinates of the corners of `f`, unwrapped across periodic
+  /// seams so that the triangle is a genuine planar triangle.
+  std::array<Chart_coordinates, 3> face_chart_coordinates(face_descriptor f) const
+  {
+    const std::array<vertex_descriptor, 3> v = face_vertices(f);
+    std::array<Chart_coordinates, 3> c = {{m_uv[v[0]], m_uv[v[1]], m_uv[v[2]]}};
+    unwrap(c);
+    return c;
+  }
+
+  /// Sets every vertex position to `map(chart_point(v))`.
+  template <class PointMapFunction>
+  void set_positions(const PointMapFunction& map)
+  {
+    for(vertex_descriptor v : m_mesh.vertices())
+      m_mesh.point(v) = map(chart_point(v));
+  }
+
+private:
+  void attach_chart_coordinates()
+  {
+    m_uv = m_mesh.template property_map<vertex_descriptor, Chart_coordinates>("v:chart_point").first;
+  }
+
+  void unwrap(std::array<Chart_coordinates, 3>& c) const
+  {
+    const double period = m_domain.period();
+    if(period == 0.)
+      return;
+    for(int i = 1; i < 3; ++i)
+      for(int k = 0; k < 2; ++k)
+      {
+        const double d = c[i][k] - c[0][k];
+        if(d > 0.5 * period) c[i][k] -= period;
+        else if(d < -0.5 * period) c[i][k] += period;
+      }
+  }
+
+  vertex_descriptor add_vertex(double x, double y)
+  {
+    const vertex_descriptor v = m_mesh.add_vertex(Point_3(x, y, 0.));
+    m_uv[v] = Chart_coordinates{{x, y}};
+    return v;
+  }
+
+  void add_face(vertex_descriptor a, vertex_descriptor b, vertex_descriptor c)
+  {
+    if(m_mesh.add_face(a, b, c) == Mesh::null_face())
+      throw std::logic_error("Chart_mesh: internal tessellation error (non-manifold face)");
+  }
+
+  // Subdivided octahedron seen from its pole: ring j has 4j vertices at
+  // equal angles; between rings j-1 and j each of the 4 sectors holds j
+  // "outward" and j-1 "inward" triangles (4 (2j - 1) per ring, 4 n^2 up to ring n).
+  void build_disk(int n)
+  {
+    const double R = m_domain.radius;
+    if(!(R > 0.))
+      throw std::invalid_argument("Chart_mesh: disk radius must be positive");
+    std::vector<double> radii(1, 0.);
+    const double inner = (std::min)(R, 1.);
+    for(int j = 1; j <= n; ++j)
+      radii.push_back(inner * double(j) / n);
+    if(R > 1.)
+    {
+      const int margin_rings = (std::max)(1, int(std::ceil((R - 1.) * n)));
+      for(int j = 1; j <= margin_rings; ++j)
+        radii.push_back(1. + (R - 1.) * double(j) / margin_rings);
+    }
+    std::vector<std::vector<vertex_descriptor>> rings;
+    rings.push_back({add_vertex(0., 0.)});
+    for(std::size_t j = 1; j < radii.size(); ++j)
+    {
+      std::vector<vertex_descriptor> ring;
+      const std::size_t count = 4 * j;
+      for(std::size_t k = 0; k < count; ++k)
+      {
+        const double a = 2. * M_PI * double(k) / double(count);
+        ring.push_back(add_vertex(radii[j] * std::cos(a), radii[j] * std::sin(a)));
+      }
+      rings.push_back(std::move(ring));
+    }
+    for(std::size_t j = 1; j < rings.size(); ++j)
+    {
+      const std::vector<vertex_descriptor>& in = rings[j - 1];
+      const std::vector<vertex_descriptor>& out = rings[j];
+      auto outer = [&](std::size_t s, std::size_t i) { return out[(s * j + i) % out.size()]; };
+      auto inner_v = [&](std::size_t s, std::size_t i) {
+        return (j == 1) ? in[0] : in[(s * (j - 1) + i) % in.size()];
+      };
+      for(std::size_t s = 0; s < 4; ++s)
+      {
+        for(std::size_t i = 0; i < j; ++i)
+          add_face(outer(s, i), outer(s, i + 1), inner_v(s, i));
+        for(std::size_t i = 0; i + 1 < j; ++i)
+          add_face(inner_v(s, i), outer(s, i + 1), inner_v(s, i + 1));
+      }
+    }
+  }
+
+  void build_torus(int n)
+  {
+    // at least 3 rows, or the two vertical edges of a column would coincide
+    const std::size_t nx = 4 * std::size_t(n), ny = (std::max)(std::size_t(3), 2 * std::size_t(n));
+    const double period = m_domain.period();
+    std::vector<vertex_descriptor> grid(nx * ny);
+    for(std::size_t j = 0; j < ny; ++j)
+      for(std::size_t i = 0; i < nx; ++i)
+        grid[j * nx + i] = add_vertex(period * double(i) / nx, period * double(j) / ny);
+    auto at = [&](std::size_t i, std::size_t j) { return grid[(j % ny) * nx + (i % nx)]; };
+    for(std::size_t j = 0; j < ny; ++j)
+      for(std::size_t i = 0; i < nx; ++i)
+      {
+        add_face(at(i, j), at(i + 1, j), at(i + 1, j + 1));
+        add_face(at(i, j), at(i + 1, j + 1), at(i, j + 1));
+      }
+  }
+
+  std::size_t m_chart;
+  Chart_domain m_domain;
+  Mesh m_mesh;
+  Chart_coordinate_map m_uv;
+};
+
+/// \ingroup PkgBlendedShapeCharts
+/// One Chart_mesh per chart of `primitive`, positioned by the primitive.
+template <class Primitive>
+std::vector<Chart_mesh<typename Primitive::Geom_traits>>
+make_chart_meshes(const Primitive& primitive, int resolution)
+{
+  std::vector<Chart_mesh<typename Primitive::Geom_traits>> meshes;
+  for(std::size_t c = 0; c < primitive.number_of_charts(); ++c)
+  {
+    meshes.emplace_back(c, primitive.chart_domain(c), resolution);
+    meshes.back().set_positions([&](const Chart_point& p) { return primitive.point(p); });
+  }
+  return meshes;
+}
+
+} // namespace Blended_shapes
+} // namespace CGAL
+
+#endif // CGAL_BLENDED_SHAPE_CHART_MESH_H

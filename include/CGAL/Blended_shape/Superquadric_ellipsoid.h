@@ -1,0 +1,239 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
+#ifndef CGAL_BLENDED_SHAPE_SUPERQUADRIC_ELLIPSOID_H
+#define CGAL_BLENDED_SHAPE_SUPERQUADRIC_ELLIPSOID_H
+
+#include <CGAL/Blended_shape/Chart_domain.h>
+#include <CGAL/Blended_shape/internal/Parameter_table.h>
+#include <CGAL/Blended_shape/internal/signed_power.h>
+
+#include <Eigen/Core>
+
+#include <array>
+#include <cmath>
+#include <sstream>
+#include <stdexcept>
+
+namespace CGAL {
+namespace Blended_shapes {
+
+/*!
+\ingroup PkgBlendedShapePrimitives
+
+A superquadric ellipsoid (paper eq. 31 with superquadric exponents)
+\f[ s(\eta,\omega) = \big(a_1\, C_\eta^{e_1} C_\omega^{e_2},\;
+                          a_2\, C_\eta^{e_1} S_\omega^{e_2},\;
+                          a_3\, S_\eta^{e_1}\big) \f]
+with \f$C_t^e = \mathrm{sign}(\cos t)|\cos t|^e\f$ and
+\f$S_t^e = \mathrm{sign}(\sin t)|\sin t|^e\f$, over two disk charts
+without singularity (sec. 5.3, App. B.1):
+
+- chart 0 (upper half): chart point \f$(x, y)\f$, \f$\rho = |(x,y)|\f$,
+  latitude \f$\eta = \frac{\pi}{2}(1-\rho)\f$, longitude \f$\omega = \mathrm{atan2}(y, x)\f$;
+- chart 1 (lower half): \f$\eta = -\frac{\pi}{2}(1-\rho)\f$, \f$\omega = \mathrm{atan2}(-y, x)\f$.
+
+Both charts are disks of radius `1 + margin`: each reaches `margin * 90` degrees
+of latitude past the equator, so they overlap in a band around it. The pole is
+the chart centre, where the azimuthal map is smooth (for \f$e_1 = 1\f$). Both
+charts are oriented so that counterclockwise chart triangles give the outward
+normal. The two charts share one parameter vector (the seam is geometrically
+exact), and the identification of their points is explicit: to_chart() and
+canonical_chart_point().
+
+Parameters: \f$(a_1, a_2, a_3, e_1, e_2)\f$; \f$a_i > 0\f$ and
+\f$e_i \in [0.01, 2]\f$ (the closed-form normal needs \f$e \le 2\f$).
+
+\tparam GeomTraits a CGAL kernel whose `FT` is `double`.
+
+\cgalModels{BlendedShapePrimitive}
+*/
+template <class GeomTraits>
+class Superquadric_ellipsoid
+{
+public:
+  typedef GeomTraits Geom_traits;
+  typedef typename Geom_traits::FT FT;
+  typedef typename Geom_traits::Point_3 Point_3;
+  typedef typename Geom_traits::Vector_3 Vector_3;
+
+  static constexpr int number_of_parameters = 5;
+  typedef Eigen::Matrix<double, number_of_parameters, 1> Parameter_vector;
+  typedef Eigen::Matrix<double, 3, number_of_parameters> Jacobian;
+
+  /// Indices into the parameter vector.
+  enum Parameter_index { A1 = 0, A2, A3, E1, E2 };
+
+  static constexpr double default_chart_margin = 0.2;
+
+  /// An ellipsoid with the given parameters; `chart_margin` in (0, 1) is how
+  /// far past the equator each chart reaches, in units of the chart radius.
+  /// \throws std::invalid_argument on out-of-bound parameters or margin.
+  explicit Superquadric_ellipsoid(double a1 = 1., double a2 = 1., double a3 = 1.,
+                                  double e1 = 1., double e2 = 1.,
+                                  double chart_margin = default_chart_margin)
+    : m_margin(chart_margin)
+  {
+    if(!(chart_margin > 0. && chart_margin < 1.))
+    {
+      std::ostringstream msg;
+      msg << "Superquadric_ellipsoid: chart margin " << chart_margin
+          << " is not in (0, 1); use a small positive value such as 0.2";
+      throw std::invalid_argument(msg.str());
+    }
+    Parameter_vector q;
+    q << a1, a2, a3, e1, e2;
+    set_parameters(q);
+  }
+
+  /// \name Parameters
+  /// @{
+  static const Parameter_info& parameter_info(int i) { return table()[std::size_t(i)]; }
+  static const char* parameter_name(int i) { return parameter_info(i).name; }
+  static double parameter_lower_bound(int i) { return parameter_info(i).lower_bound; }
+  static double parameter_upper_bound(int i) { return parameter_info(i).upper_bound; }
+  static double parameter_default_value(int i) { return parameter_info(i).default_value; }
+
+  const Parameter_vector& parameters() const { return m_q; }
+
+  /// \throws std::invalid_argument if a value is not finite or out of bounds.
+  void set_parameters(const Parameter_vector& q)
+  {
+    internal::validate_parameters<number_of_parameters>("Superquadric_ellipsoid", table(), q);
+    m_q = q;
+  }
+  /// @}
+
+  /// \name Charts
+  /// @{
+  std::size_t number_of_charts() const { return 2; }
+  double chart_margin() const { return m_margin; }
+  Chart_domain chart_domain(std::size_t) const { return Chart_domain::disk(1. + m_margin); }
+
+  /// Latitude and longitude of a chart point, as cosines and sines computed
+  /// without going through the angles (exact zeros at the pole and on the axes).
+  struct Angles
+  {
+    double cos_eta, sin_eta, cos_omega, sin_omega;
+  };
+
+  Angles angles(const Chart_point& p) const
+  {
+    const double rho = std::hypot(p.x, p.y);
+    const double half_pi = 0.5 * M_PI;
+    Angles a;
+    // eta = +-(pi/2)(1 - rho): cos eta = sin(pi rho / 2), sin eta = +-sin((pi/2)(1 - rho)).
+    a.cos_eta = std::sin(half_pi * rho);
+    const double s = std::sin(half_pi * (1. - rho));
+    const double ys = (p.chart == 0) ? p.y : -p.y;
+    a.sin_eta = (p.chart == 0) ? s : -s;
+    if(rho > 0.)
+    {
+      a.cos_omega = p.x / rho;
+      a.sin_omega = ys / rho;
+    }
+    else
+    {
+      a.cos_omega = 1.;
+      a.sin_omega = 0.;
+    }
+    return a;
+  }
+
+  /// The same surface point expressed in chart `target`, if that chart
+  /// contains it. The two charts overlap where \f$\rho \in [1-m, 1+m]\f$;
+  /// there \f$\rho_{other} = 2 - \rho\f$ and the longitude is kept.
+  bool to_chart(const Chart_point& p, std::size_t target, Chart_point& q) const
+  {
+    if(target == p.chart)
+    {
+      q = p;
+      return true;
+    }
+    const double rho = std::hypot(p.x, p.y);
+    const double other_rho = 2. - rho;
+    if(rho > 1. + m_margin || other_rho > 1. + m_margin)
+      return false;
+    const double f = other_rho / rho; // rho >= 1 - m > 0 here
+    q = Chart_point(target, f * p.x, -f * p.y);
+    return true;
+  }
+
+  /// The representative of a surface point in the chart of its own
+  /// hemisphere (chart 0 for the equator itself).
+  Chart_point canonical_chart_point(const Chart_point& p) const
+  {
+    const double rho = std::hypot(p.x, p.y);
+    if(rho < 1. || (rho == 1. && p.chart == 0))
+      return p;
+    Chart_point q;
+    to_chart(p, 1 - p.chart, q);
+    return q;
+  }
+  /// @}
+
+  /// \name Evaluation
+  /// @{
+  Point_3 point(const Chart_point& p) const
+  {
+    const Angles a = angles(p);
+    const double ce = internal::signed_pow(a.cos_eta, m_q[E1]);
+    return Point_3(m_q[A1] * ce * internal::signed_pow(a.cos_omega, m_q[E2]),
+                   m_q[A2] * ce * internal::signed_pow(a.sin_omega, m_q[E2]),
+                   m_q[A3] * internal::signed_pow(a.sin_eta, m_q[E1]));
+  }
+
+  /// The parameter Jacobian ds/dq (3 x 5) at `p`, and the point itself.
+  Point_3 point_and_jacobian(const Chart_point& p, Jacobian& J) const
+  {
+    const Angles a = angles(p);
+    const internal::Signed_power ce(a.cos_eta, m_q[E1]), se(a.sin_eta, m_q[E1]);
+    const internal::Signed_power cw(a.cos_omega, m_q[E2]), sw(a.sin_omega, m_q[E2]);
+    const double a1 = m_q[A1], a2 = m_q[A2], a3 = m_q[A3];
+    J.setZero();
+    J(0, A1) = ce.value * cw.value;
+    J(1, A2) = ce.value * sw.value;
+    J(2, A3) = se.value;
+    J(0, E1) = a1 * ce.d_exponent * cw.value;
+    J(1, E1) = a2 * ce.d_exponent * sw.value;
+    J(2, E1) = a3 * se.d_exponent;
+    J(0, E2) = a1 * ce.value * cw.d_exponent;
+    J(1, E2) = a2 * ce.value * sw.d_exponent;
+    return Point_3(a1 * J(0, A1), a2 * J(1, A2), a3 * J(2, A3));
+  }
+
+  void jacobian(const Chart_point& p, Jacobian& J) const { point_and_jacobian(p, J); }
+
+  /// Unit outward normal, from the closed form of the superquadric's
+  /// implicit gradient (defined at the poles too, for any exponent in bounds).
+  Vector_3 normal(const Chart_point& p) const
+  {
+    const Angles a = angles(p);
+    const double k1 = 2. - m_q[E1], k2 = 2. - m_q[E2];
+    const double ce = internal::signed_pow(a.cos_eta, k1);
+    const double nx = ce * internal::signed_pow(a.cos_omega, k2) / m_q[A1];
+    const double ny = ce * internal::signed_pow(a.sin_omega, k2) / m_q[A2];
+    const double nz = internal::signed_pow(a.sin_eta, k1) / m_q[A3];
+    const double len = std::sqrt(nx * nx + ny * ny + nz * nz);
+    return Vector_3(nx / len, ny / len, nz / len);
+  }
+  /// @}
+
+private:
+  static const std::array<Parameter_info, number_of_parameters>& table()
+  {
+    static const std::array<Parameter_info, number_of_parameters> t = {{
+      {"a1", 1e-9, HUGE_VAL, 1., Parameter_kind::Length},
+      {"a2", 1e-9, HUGE_VAL, 1., Parameter_kind::Length},
+      {"a3", 1e-9, HUGE_VAL, 1., Parameter_kind::Length},
+      {"e1", 0.01, 2., 1., Parameter_kind::Dimensionless},
+      {"e2", 0.01, 2., 1., Parameter_kind::Dimensionless}}};
+    return t;
+  }
+
+  Parameter_vector m_q;
+  double m_margin;
+};
+
+} // namespace Blended_shapes
+} // namespace CGAL
+
+#endif // CGAL_BLENDED_SHAPE_SUPERQUADRIC_ELLIPSOID_H

@@ -1,0 +1,17 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
+// The package-specific named parameters (X-macro list; no include guard on purpose).
+// Initialization (initialize_from_moments)
+CGAL_BLENDED_SHAPE_PARAMETER(refine_axes)
+CGAL_BLENDED_SHAPE_PARAMETER(minimum_axis_ratio)
+// Fitting (fit_blended_shape)
+CGAL_BLENDED_SHAPE_PARAMETER(integrator)
+CGAL_BLENDED_SHAPE_PARAMETER(energy_tolerance)
+CGAL_BLENDED_SHAPE_PARAMETER(force_tolerance)
+CGAL_BLENDED_SHAPE_PARAMETER(steady_iterations)
+CGAL_BLENDED_SHAPE_PARAMETER(mesh_resolution)
+CGAL_BLENDED_SHAPE_PARAMETER(subset_size)
+CGAL_BLENDED_SHAPE_PARAMETER(rigid_first)
+CGAL_BLENDED_SHAPE_PARAMETER(robust_weighting)
+CGAL_BLENDED_SHAPE_PARAMETER(reference_mesh)
+CGAL_BLENDED_SHAPE_PARAMETER(try_all_axes)
+CGAL_BLENDED_SHAPE_PARAMETER(maximum_size_factor)
