@@ -27,6 +27,7 @@ namespace Blended_shapes {
 /// operations robust, and the points are plain doubles.
 typedef Exact_predicates_inexact_constructions_kernel CAD_kernel;
 /// \ingroup PkgBlendedShapeScanning
+/// The mesh type of the test objects.
 typedef Surface_mesh<CAD_kernel::Point_3> CAD_mesh;
 
 /// \name Primitive solids
@@ -235,8 +236,8 @@ struct Box_cylinder_parameters
   double box_length = 2.;      ///< along x
   double box_width = 2.;       ///< along y
   double box_height = 1.;      ///< along z
-  double cylinder_radius = 0.6;
-  double cylinder_height = 1.;
+  double cylinder_radius = 0.6; ///< radius of the cylinder
+  double cylinder_height = 1.;  ///< height of the cylinder above the box top
   std::size_t segments = 48;   ///< per circle
 };
 
@@ -273,9 +274,9 @@ inline CAD_mesh make_box_cylinder(const Box_cylinder_parameters& p = Box_cylinde
 struct Mug_parameters
 {
   double radius = 1.;             ///< outer radius of the cup
-  double height = 2.;
-  double wall_thickness = 0.15;
-  double bottom_thickness = 0.15;
+  double height = 2.;             ///< height of the cup
+  double wall_thickness = 0.15;   ///< thickness of the cup's wall
+  double bottom_thickness = 0.15; ///< thickness of the cup's bottom
   double handle_radius = 0.5;     ///< radius of the handle ring's centre line
   double handle_thickness = 0.1;  ///< radius of the handle's tube
   std::size_t segments = 48;      ///< around the cup and around the handle ring
@@ -350,9 +351,9 @@ struct Two_holed_box_parameters
   double box_length = 4.;        ///< along x
   double box_width = 2.;         ///< along y
   double box_height = 1.;        ///< along z (the holes' direction)
-  double big_hole_radius = 0.6;
-  double small_hole_radius = 0.35;
-  std::size_t segments = 40;
+  double big_hole_radius = 0.6;    ///< radius of the hole at x = -length/4
+  double small_hole_radius = 0.35; ///< radius of the hole at x = +length/4
+  std::size_t segments = 40;       ///< per circle
 };
 
 /// \ingroup PkgBlendedShapeScanning
@@ -396,13 +397,13 @@ inline CAD_mesh make_two_holed_box(const Two_holed_box_parameters& p = Two_holed
 /// x = -length/4 and a cylinder standing on the box top at x = +length/4.
 struct Box_hole_cylinder_parameters
 {
-  double box_length = 4.;
-  double box_width = 2.;
-  double box_height = 1.;
-  double hole_radius = 0.5;
-  double cylinder_radius = 0.5;
-  double cylinder_height = 1.;
-  std::size_t segments = 40;
+  double box_length = 4.;        ///< along x
+  double box_width = 2.;         ///< along y
+  double box_height = 1.;        ///< along z
+  double hole_radius = 0.5;      ///< radius of the through-hole
+  double cylinder_radius = 0.5;  ///< radius of the cylinder
+  double cylinder_height = 1.;   ///< height of the cylinder above the box top
+  std::size_t segments = 40;     ///< per circle
 };
 
 /// \ingroup PkgBlendedShapeScanning

@@ -14,11 +14,12 @@ namespace Blended_shapes {
 /// they are parameters of the map, not geometry.
 struct Chart_point
 {
-  std::size_t chart = 0;
-  double x = 0.;
-  double y = 0.;
+  std::size_t chart = 0; ///< index of the chart, in [0, number of charts of the primitive)
+  double x = 0.;         ///< first chart coordinate
+  double y = 0.;         ///< second chart coordinate
 
   Chart_point() = default;
+  /// The point `(xx, yy)` of chart `c`.
   Chart_point(std::size_t c, double xx, double yy) : chart(c), x(xx), y(yy) {}
 };
 
@@ -36,11 +37,13 @@ enum class Chart_kind
 /// Description of one chart domain.
 struct Chart_domain
 {
-  Chart_kind kind = Chart_kind::Disk;
+  Chart_kind kind = Chart_kind::Disk; ///< the shape of the domain
   /// Disk charts: the radius of the domain (1 + margin for the ellipsoid halves).
   double radius = 1.;
 
+  /// The disk of radius `r` centred at the origin.
   static Chart_domain disk(double r) { return Chart_domain{Chart_kind::Disk, r}; }
+  /// The periodic square `[0, 2 pi)^2`.
   static Chart_domain torus() { return Chart_domain{Chart_kind::Torus, 0.}; }
 
   /// Period of a periodic coordinate (0 for disks).

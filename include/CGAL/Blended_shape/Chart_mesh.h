@@ -40,15 +40,20 @@ template <class GeomTraits>
 class Chart_mesh
 {
 public:
-  typedef GeomTraits Geom_traits;
-  typedef typename Geom_traits::Point_3 Point_3;
-  typedef CGAL::Surface_mesh<Point_3> Mesh;
-  typedef typename Mesh::Vertex_index vertex_descriptor;
-  typedef typename Mesh::Face_index face_descriptor;
-  typedef std::array<double, 2> Chart_coordinates;
+  typedef GeomTraits Geom_traits;                 ///< the kernel
+  typedef typename Geom_traits::Point_3 Point_3;  ///< the point type of the mesh
+  typedef CGAL::Surface_mesh<Point_3> Mesh;      ///< the tessellation
+  typedef typename Mesh::Vertex_index vertex_descriptor; ///< a vertex of the mesh
+  typedef typename Mesh::Face_index face_descriptor;     ///< a face of the mesh
+  typedef std::array<double, 2> Chart_coordinates;       ///< the chart coordinates (x, y) of a vertex
+  /// The vertex property map of the chart coordinates (property `"v:chart_point"`).
   typedef typename Mesh::template Property_map<vertex_descriptor, Chart_coordinates> Chart_coordinate_map;
 
-  /// \throws std::invalid_argument if `resolution < 1` or the domain is empty.
+  /// Tessellates the domain `domain` of chart `chart_index` with `resolution`
+  /// rings (disk) or `4 resolution` columns (torus). The vertex positions are
+  /// the chart points themselves, `(x, y, 0)`, until set_positions() is called.
+  /// \throws std::invalid_argument if `resolution` is not in [1, 4096] or the
+  ///         radius of a disk domain is not positive.
   Chart_mesh(std::size_t chart_index, const Chart_domain& domain, int resolution)
     : m_chart(chart_index), m_domain(domain)
   {
@@ -68,12 +73,15 @@ public:
 
   // The chart-coordinate map is a handle into the mesh's own property
   // storage: copies and moves must fetch it again from the new mesh.
+  /// Copy constructor: the copy has its own mesh and chart-coordinate map.
   Chart_mesh(const Chart_mesh& other)
     : m_chart(other.m_chart), m_domain(other.m_domain), m_mesh(other.m_mesh)
   { attach_chart_coordinates(); }
+  /// Move constructor.
   Chart_mesh(Chart_mesh&& other) noexcept
     : m_chart(other.m_chart), m_domain(other.m_domain), m_mesh(std::move(other.m_mesh))
   { attach_chart_coordinates(); }
+  /// Assignment (copy or move).
   Chart_mesh& operator=(Chart_mesh other) noexcept
   {
     m_chart = other.m_chart;
@@ -83,11 +91,16 @@ public:
     return *this;
   }
 
+  /// The mesh, with the current positions.
   const Mesh& mesh() const { return m_mesh; }
+  /// The index of the chart this mesh tessellates.
   std::size_t chart_index() const { return m_chart; }
+  /// The chart domain.
   const Chart_domain& domain() const { return m_domain; }
+  /// The chart coordinates of the vertices.
   Chart_coordinate_map chart_coordinate_map() const { return m_uv; }
 
+  /// The chart point of vertex `v`.
   Chart_point chart_point(vertex_descriptor v) const
   {
     const Chart_coordinates& c = m_uv[v];

@@ -37,10 +37,12 @@ public:
     All_points_identical  ///< every point has exactly the same coordinates
   };
 
+  /// An error of kind `c` with the message `message` (returned by `what()`).
   Input_error(Code c, const std::string& message)
     : std::runtime_error(message), m_code(c)
   {}
 
+  /// The kind of bad input.
   Code code() const { return m_code; }
 
   /// A stable lower-case identifier of `c`, e.g. `"file_not_found"`, for logs and scripts.

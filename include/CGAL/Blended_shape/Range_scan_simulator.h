@@ -59,21 +59,22 @@ Use validate() (or the simulator, which calls it) to check a camera.
 template <class GeomTraits>
 struct Camera
 {
-  typedef typename GeomTraits::Point_3 Point_3;
-  typedef typename GeomTraits::Vector_3 Vector_3;
+  typedef typename GeomTraits::Point_3 Point_3;   ///< the point type
+  typedef typename GeomTraits::Vector_3 Vector_3; ///< the vector type
 
-  Point_3 eye = Point_3(0, 0, 1);
-  Point_3 target = Point_3(0, 0, 0);
+  Point_3 eye = Point_3(0, 0, 1);    ///< the camera position (orthographic: a point of the ray plane)
+  Point_3 target = Point_3(0, 0, 0); ///< the point looked at: the view direction is `target - eye`
   Vector_3 up = Vector_3(0, 1, 0); ///< need not be orthogonal to the view direction
-  Projection projection = Projection::Perspective;
+  Projection projection = Projection::Perspective; ///< perspective or parallel rays
   double field_of_view_degrees = 40.; ///< perspective only, in (0, 180)
   double view_height = 1.;            ///< orthographic only, world units, > 0
-  std::size_t width = 200;
-  std::size_t height = 200;
+  std::size_t width = 200;  ///< image width in pixels (columns)
+  std::size_t height = 200; ///< image height in pixels (rows)
 
   /// The largest accepted `width * height`: beyond it a scan would exhaust memory.
   static constexpr double maximum_number_of_pixels = 1e8;
 
+  /// A perspective camera at `eye` looking at `target`.
   static Camera perspective(const Point_3& eye, const Point_3& target, const Vector_3& up,
                             double field_of_view_degrees, std::size_t width, std::size_t height)
   {
@@ -88,6 +89,7 @@ struct Camera
     return c;
   }
 
+  /// An orthographic camera: parallel rays from the plane through `eye`, toward `target`.
   static Camera orthographic(const Point_3& eye, const Point_3& target, const Vector_3& up,
                              double view_height, std::size_t width, std::size_t height)
   {
@@ -113,8 +115,9 @@ struct Scan_options
 {
   double noise_sigma = 0.;          ///< standard deviation of the range noise along the ray, world units
   double dropout_probability = 0.;  ///< probability that a hit pixel returns no sample, in [0, 1]
-  std::uint64_t random_seed = 0;
+  std::uint64_t random_seed = 0;    ///< seed of the noise and the dropout
 
+  /// Checks the options.
   /// \throws std::invalid_argument if `noise_sigma` is negative or not finite,
   /// or if `dropout_probability` is not in [0, 1].
   void validate() const
@@ -141,7 +144,7 @@ struct Scan_options
 template <class GeomTraits>
 struct Range_sample
 {
-  typename GeomTraits::Point_3 point;
+  typename GeomTraits::Point_3 point;    ///< the measured point (first hit of the pixel's ray, plus noise)
   typename GeomTraits::Vector_3 normal; ///< unit normal of the hit face, facing the camera
   std::size_t view = 0;                 ///< index of the camera in a multi-view scan
   std::size_t row = 0;                  ///< pixel row, 0 at the top
@@ -296,13 +299,13 @@ template <class TriangleMesh,
 class Range_scan_simulator
 {
 public:
-  typedef GeomTraits Geom_traits;
-  typedef typename Geom_traits::Point_3 Point_3;
-  typedef typename Geom_traits::Vector_3 Vector_3;
-  typedef typename Geom_traits::Ray_3 Ray_3;
-  typedef typename Geom_traits::Segment_3 Segment_3;
-  typedef Blended_shapes::Camera<Geom_traits> Camera;
-  typedef Range_sample<Geom_traits> Sample;
+  typedef GeomTraits Geom_traits;                     ///< the kernel
+  typedef typename Geom_traits::Point_3 Point_3;       ///< the point type
+  typedef typename Geom_traits::Vector_3 Vector_3;     ///< the vector type
+  typedef typename Geom_traits::Ray_3 Ray_3;           ///< the ray type
+  typedef typename Geom_traits::Segment_3 Segment_3;   ///< the segment type
+  typedef Blended_shapes::Camera<Geom_traits> Camera;  ///< the camera type
+  typedef Range_sample<Geom_traits> Sample;            ///< one range measurement
 
 private:
   typedef AABB_face_graph_triangle_primitive<TriangleMesh> Primitive;
@@ -399,6 +402,7 @@ public:
     return all;
   }
 
+  /// The scanned mesh.
   const TriangleMesh& mesh() const { return m_mesh; }
 
 private:

@@ -19,28 +19,30 @@ namespace Blended_shapes {
 /*!
 \ingroup PkgBlendedShapePrimitives
 
-A superquadric ellipsoid (paper eq. 31 with superquadric exponents)
-\f[ s(\eta,\omega) = \big(a_1\, C_\eta^{e_1} C_\omega^{e_2},\;
-                          a_2\, C_\eta^{e_1} S_\omega^{e_2},\;
-                          a_3\, S_\eta^{e_1}\big) \f]
-with \f$C_t^e = \mathrm{sign}(\cos t)|\cos t|^e\f$ and
-\f$S_t^e = \mathrm{sign}(\sin t)|\sin t|^e\f$, over two disk charts
-without singularity (sec. 5.3, App. B.1):
+A superquadric ellipsoid (paper eq. 31 with superquadric exponents):
 
-- chart 0 (upper half): chart point \f$(x, y)\f$, \f$\rho = |(x,y)|\f$,
-  latitude \f$\eta = \frac{\pi}{2}(1-\rho)\f$, longitude \f$\omega = \mathrm{atan2}(y, x)\f$;
-- chart 1 (lower half): \f$\eta = -\frac{\pi}{2}(1-\rho)\f$, \f$\omega = \mathrm{atan2}(-y, x)\f$.
+    s(eta, omega) = ( a1 C(eta, e1) C(omega, e2),
+                      a2 C(eta, e1) S(omega, e2),
+                      a3 S(eta, e1) )
+
+with the signed powers `C(t, e) = sign(cos t) |cos t|^e` and
+`S(t, e) = sign(sin t) |sin t|^e`, over two disk charts without singularity
+(sec. 5.3, App. B.1):
+
+- chart 0 (upper half): chart point `(x, y)`, `rho = |(x, y)|`,
+  latitude `eta = (pi/2)(1 - rho)`, longitude `omega = atan2(y, x)`;
+- chart 1 (lower half): `eta = -(pi/2)(1 - rho)`, `omega = atan2(-y, x)`.
 
 Both charts are disks of radius `1 + margin`: each reaches `margin * 90` degrees
 of latitude past the equator, so they overlap in a band around it. The pole is
-the chart centre, where the azimuthal map is smooth (for \f$e_1 = 1\f$). Both
+the chart centre, where the azimuthal map is smooth (for `e1 = 1`). Both
 charts are oriented so that counterclockwise chart triangles give the outward
 normal. The two charts share one parameter vector (the seam is geometrically
 exact), and the identification of their points is explicit: to_chart() and
 canonical_chart_point().
 
-Parameters: \f$(a_1, a_2, a_3, e_1, e_2)\f$; \f$a_i > 0\f$ and
-\f$e_i \in [0.01, 2]\f$ (the closed-form normal needs \f$e \le 2\f$).
+Parameters: `(a1, a2, a3, e1, e2)`; `ai > 0` and `ei` in [0.01, 2] (the
+closed-form normal needs `e <= 2`).
 
 \tparam GeomTraits a CGAL kernel whose `FT` is `double`.
 
@@ -50,18 +52,21 @@ template <class GeomTraits>
 class Superquadric_ellipsoid
 {
 public:
-  typedef GeomTraits Geom_traits;
-  typedef typename Geom_traits::FT FT;
-  typedef typename Geom_traits::Point_3 Point_3;
-  typedef typename Geom_traits::Vector_3 Vector_3;
+  typedef GeomTraits Geom_traits;                  ///< the kernel
+  typedef typename Geom_traits::FT FT;             ///< the number type of the kernel
+  typedef typename Geom_traits::Point_3 Point_3;   ///< the point type
+  typedef typename Geom_traits::Vector_3 Vector_3; ///< the vector type (normals)
 
-  static constexpr int number_of_parameters = 5;
+  static constexpr int number_of_parameters = 5;   ///< the dimension of the parameter vector
+  /// The parameter vector (see Parameter_index for the order).
   typedef Eigen::Matrix<double, number_of_parameters, 1> Parameter_vector;
+  /// The parameter Jacobian ds/dq at one chart point (3 x 5).
   typedef Eigen::Matrix<double, 3, number_of_parameters> Jacobian;
 
   /// Indices into the parameter vector.
   enum Parameter_index { A1 = 0, A2, A3, E1, E2 };
 
+  /// The default `chart_margin` of the constructor.
   static constexpr double default_chart_margin = 0.2;
 
   /// An ellipsoid with the given parameters; `chart_margin` in (0, 1) is how
@@ -86,12 +91,19 @@ public:
 
   /// \name Parameters
   /// @{
+
+  /// Name, bounds, default value and kind of parameter `i`.
   static const Parameter_info& parameter_info(int i) { return table()[std::size_t(i)]; }
+  /// The name of parameter `i` ("a1", ...).
   static const char* parameter_name(int i) { return parameter_info(i).name; }
+  /// The smallest allowed value of parameter `i`.
   static double parameter_lower_bound(int i) { return parameter_info(i).lower_bound; }
+  /// The largest allowed value of parameter `i`.
   static double parameter_upper_bound(int i) { return parameter_info(i).upper_bound; }
+  /// The default value of parameter `i`.
   static double parameter_default_value(int i) { return parameter_info(i).default_value; }
 
+  /// The current parameters.
   const Parameter_vector& parameters() const { return m_q; }
 
   /// \throws std::invalid_argument if a value is not finite or out of bounds.
@@ -104,17 +116,29 @@ public:
 
   /// \name Charts
   /// @{
+
+  /// 2: the upper (0) and the lower (1) half.
   std::size_t number_of_charts() const { return 2; }
+  /// How far past the equator each chart reaches, in units of the chart radius.
   double chart_margin() const { return m_margin; }
+  /// Both charts: the disk of radius `1 + chart_margin()`.
   Chart_domain chart_domain(std::size_t) const { return Chart_domain::disk(1. + m_margin); }
 
   /// Latitude and longitude of a chart point, as cosines and sines computed
   /// without going through the angles (exact zeros at the pole and on the axes).
   struct Angles
   {
+    /// The cosine of the latitude `eta`.
     double cos_eta, sin_eta, cos_omega, sin_omega;
+    /// \var sin_eta
+    /// The sine of the latitude `eta`.
+    /// \var cos_omega
+    /// The cosine of the longitude `omega`.
+    /// \var sin_omega
+    /// The sine of the longitude `omega`.
   };
 
+  /// The latitude and longitude of `p` (longitude 0 at the pole).
   Angles angles(const Chart_point& p) const
   {
     const double rho = std::hypot(p.x, p.y);
@@ -139,8 +163,9 @@ public:
   }
 
   /// The same surface point expressed in chart `target`, if that chart
-  /// contains it. The two charts overlap where \f$\rho \in [1-m, 1+m]\f$;
-  /// there \f$\rho_{other} = 2 - \rho\f$ and the longitude is kept.
+  /// contains it. The two charts overlap where `rho` is in [1 - m, 1 + m]
+  /// (m the chart margin); there the other chart's radius is `2 - rho` and the
+  /// longitude is kept.
   bool to_chart(const Chart_point& p, std::size_t target, Chart_point& q) const
   {
     if(target == p.chart)
@@ -172,6 +197,8 @@ public:
 
   /// \name Evaluation
   /// @{
+
+  /// The surface point at `p`.
   Point_3 point(const Chart_point& p) const
   {
     const Angles a = angles(p);
@@ -200,6 +227,7 @@ public:
     return Point_3(a1 * J(0, A1), a2 * J(1, A2), a3 * J(2, A3));
   }
 
+  /// The parameter Jacobian ds/dq at `p`.
   void jacobian(const Chart_point& p, Jacobian& J) const { point_and_jacobian(p, J); }
 
   /// Unit outward normal, from the closed form of the superquadric's

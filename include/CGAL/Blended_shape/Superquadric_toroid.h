@@ -17,18 +17,20 @@ namespace Blended_shapes {
 /*!
 \ingroup PkgBlendedShapePrimitives
 
-A superquadric toroid (paper eq. 32 with superquadric exponents)
-\f[ s(u, v) = \big(a_1 (a_4 + C_u^{e_1}) C_v^{e_2},\;
-                   a_2 (a_5 + C_u^{e_1}) S_v^{e_2},\;
-                   a_3 S_u^{e_1}\big) \f]
-(notation of Superquadric_ellipsoid), \f$u\f$ around the tube, \f$v\f$ around
-the axis. One chart, the torus \f$[0, 2\pi)^2\f$ periodic in both
-coordinates, which has no singularity: chart point \f$(x, y) = (v, u)\f$,
-ordered so that counterclockwise chart triangles give the outward normal.
+A superquadric toroid (paper eq. 32 with superquadric exponents):
 
-Parameters \f$(a_1, \dots, a_5, e_1, e_2)\f$: \f$a_1, a_2, a_3 > 0\f$,
-\f$a_4, a_5 \ge 1\f$ (at 1 the inner wall reaches the axis: the pinched
-shape of the hole blend, sec. 4.2), \f$e_i \in [0.01, 2]\f$.
+    s(u, v) = ( a1 (a4 + C(u, e1)) C(v, e2),
+                a2 (a5 + C(u, e1)) S(v, e2),
+                a3 S(u, e1) )
+
+(signed powers `C` and `S` as in Superquadric_ellipsoid), `u` around the
+tube, `v` around the axis. One chart, the torus `[0, 2 pi)^2` periodic in both
+coordinates, which has no singularity: chart point `(x, y) = (v, u)`, ordered
+so that counterclockwise chart triangles give the outward normal.
+
+Parameters `(a1, a2, a3, a4, a5, e1, e2)`: `a1, a2, a3 > 0`, `a4, a5 >= 1`
+(at 1 the inner wall reaches the axis: the pinched shape of the hole blend,
+sec. 4.2), `ei` in [0.01, 2].
 
 \tparam GeomTraits a CGAL kernel whose `FT` is `double`.
 
@@ -38,15 +40,18 @@ template <class GeomTraits>
 class Superquadric_toroid
 {
 public:
-  typedef GeomTraits Geom_traits;
-  typedef typename Geom_traits::FT FT;
-  typedef typename Geom_traits::Point_3 Point_3;
-  typedef typename Geom_traits::Vector_3 Vector_3;
+  typedef GeomTraits Geom_traits;                  ///< the kernel
+  typedef typename Geom_traits::FT FT;             ///< the number type of the kernel
+  typedef typename Geom_traits::Point_3 Point_3;   ///< the point type
+  typedef typename Geom_traits::Vector_3 Vector_3; ///< the vector type (normals)
 
-  static constexpr int number_of_parameters = 7;
+  static constexpr int number_of_parameters = 7;   ///< the dimension of the parameter vector
+  /// The parameter vector (see Parameter_index for the order).
   typedef Eigen::Matrix<double, number_of_parameters, 1> Parameter_vector;
+  /// The parameter Jacobian ds/dq at one chart point (3 x 7).
   typedef Eigen::Matrix<double, 3, number_of_parameters> Jacobian;
 
+  /// Indices into the parameter vector.
   enum Parameter_index { A1 = 0, A2, A3, A4, A5, E1, E2 };
 
   /// \throws std::invalid_argument on out-of-bound parameters.
@@ -61,12 +66,19 @@ public:
 
   /// \name Parameters
   /// @{
+
+  /// Name, bounds, default value and kind of parameter `i`.
   static const Parameter_info& parameter_info(int i) { return table()[std::size_t(i)]; }
+  /// The name of parameter `i` ("a1", ...).
   static const char* parameter_name(int i) { return parameter_info(i).name; }
+  /// The smallest allowed value of parameter `i`.
   static double parameter_lower_bound(int i) { return parameter_info(i).lower_bound; }
+  /// The largest allowed value of parameter `i`.
   static double parameter_upper_bound(int i) { return parameter_info(i).upper_bound; }
+  /// The default value of parameter `i`.
   static double parameter_default_value(int i) { return parameter_info(i).default_value; }
 
+  /// The current parameters.
   const Parameter_vector& parameters() const { return m_q; }
 
   /// \throws std::invalid_argument if a value is not finite or out of bounds.
@@ -79,7 +91,10 @@ public:
 
   /// \name Charts
   /// @{
+
+  /// 1: the torus.
   std::size_t number_of_charts() const { return 1; }
+  /// The periodic square `[0, 2 pi)^2`.
   Chart_domain chart_domain(std::size_t) const { return Chart_domain::torus(); }
 
   /// The single chart is periodic: the same point with both coordinates
@@ -92,6 +107,7 @@ public:
     return true;
   }
 
+  /// `p` with both coordinates reduced to [0, 2 pi).
   Chart_point canonical_chart_point(const Chart_point& p) const
   {
     return Chart_point(0, wrap(p.x), wrap(p.y));
@@ -100,12 +116,15 @@ public:
 
   /// \name Evaluation
   /// @{
+
+  /// The surface point at `p`.
   Point_3 point(const Chart_point& p) const
   {
     Jacobian J;
     return point_and_jacobian(p, J);
   }
 
+  /// The parameter Jacobian ds/dq (3 x 7) at `p`, and the point itself.
   Point_3 point_and_jacobian(const Chart_point& p, Jacobian& J) const
   {
     const double cu = std::cos(p.y), su = std::sin(p.y);
@@ -128,6 +147,7 @@ public:
     return Point_3(a1 * J(0, A1), a2 * J(1, A2), a3 * J(2, A3));
   }
 
+  /// The parameter Jacobian ds/dq at `p`.
   void jacobian(const Chart_point& p, Jacobian& J) const { point_and_jacobian(p, J); }
 
   /// Unit outward normal: cross product of the two chart tangents, each

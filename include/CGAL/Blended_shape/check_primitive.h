@@ -37,11 +37,11 @@ Chart_point random_chart_point(const Primitive& primitive, std::size_t chart, Ra
 /// What check_jacobian() found.
 struct Jacobian_check_report
 {
-  std::size_t points_checked = 0;
+  std::size_t points_checked = 0; ///< the number of chart points checked
   /// largest relative column error |J_i - FD_i| / max(|FD_i|, floor) over all points and parameters
   double max_relative_error = 0.;
-  int worst_parameter = -1;
-  Chart_point worst_point;
+  int worst_parameter = -1;    ///< the parameter (column) of the largest error, -1 if none
+  Chart_point worst_point;     ///< the chart point of the largest error
   bool has_non_finite = false; ///< a NaN or infinity in J or in the point
 };
 
@@ -138,12 +138,12 @@ Jacobian_check_report check_jacobian(const Primitive& primitive,
 /// What check_chart_consistency() found.
 struct Chart_consistency_report
 {
-  std::size_t points_sampled = 0;
+  std::size_t points_sampled = 0;      ///< random chart points drawn, over all charts
   std::size_t pairs_checked = 0;       ///< chart points that another chart (or a period shift) also covers
   double max_relative_distance = 0.;   ///< |s(p) - s(q)| / shape size, over identified pairs
   double max_round_trip_error = 0.;    ///< chart distance of p -> other chart -> back
   double max_normal_deviation = 0.;    ///< |n(p) - n(q)| over identified pairs
-  Chart_point worst_point;
+  Chart_point worst_point;             ///< the chart point p of the largest distance
 };
 
 /*!

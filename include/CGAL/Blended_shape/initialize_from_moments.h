@@ -32,23 +32,24 @@ enum class Point_cloud_degeneracy
 /*!
 \ingroup PkgBlendedShapeInitialization
 The best-fit ellipsoid of a point cloud (paper sec. 5.3): the initial closed
-model, placed as \f$x = c + R\, s\f$ (eq. 5) with \f$s\f$ an ellipsoid of
-semi-axes `axes` (\f$e_1 = e_2 = 1\f$).
+model, placed as `x = c + R s` (eq. 5) with `s` an ellipsoid of
+semi-axes `axes` (`e1 = e2 = 1`).
 */
 template <class GeomTraits>
 struct Ellipsoid_fit
 {
-  typedef typename GeomTraits::Point_3 Point_3;
-  typedef typename GeomTraits::Vector_3 Vector_3;
+  typedef typename GeomTraits::Point_3 Point_3;   ///< the point type
+  typedef typename GeomTraits::Vector_3 Vector_3; ///< the vector type
 
   Point_3 center;                 ///< centroid of the points
   Eigen::Vector4d rotation;       ///< unit quaternion (w, x, y, z), w >= 0, of R
   std::array<double, 3> axes;     ///< semi-axes a1 >= a2 >= a3 (before refinement) along the columns of R
   std::array<double, 3> moment_axes; ///< the central-moment estimates sqrt(3 lambda_i)
   bool axes_refined = false;      ///< whether the algebraic refinement was accepted
-  Point_cloud_degeneracy degeneracy = Point_cloud_degeneracy::None;
-  std::size_t number_of_points = 0;
+  Point_cloud_degeneracy degeneracy = Point_cloud_degeneracy::None; ///< whether the cloud is flat
+  std::size_t number_of_points = 0; ///< the number of points fitted
 
+  /// The rotation matrix R; its columns are the principal directions.
   Eigen::Matrix3d rotation_matrix() const { return internal::rotation_matrix(rotation); }
   /// The `i`-th principal direction (column `i` of R), largest spread first.
   Vector_3 direction(int i) const
@@ -63,15 +64,19 @@ struct Ellipsoid_fit
 
 Fits the initial ellipsoid to `points` from their central moments (sec. 5.3):
 the centre is the centroid, the axes directions are the eigenvectors of the
-covariance matrix (largest spread first, signs fixed so that the result is
-deterministic and R is a rotation), and the semi-axes are
-\f$\sqrt{3 \lambda_i}\f$, exact for points spread uniformly over a sphere.
+covariance matrix (largest spread first; the first two are oriented so that
+the third central moment along each is positive, which makes the result follow
+any rotation, translation or uniform scaling of the cloud, and the third
+completes a right-handed frame, so R is a rotation; a direction along which the
+cloud is symmetric gets the sign that makes its largest component positive), and
+the semi-axes are `sqrt(3 lambda_i)` (`lambda_i` the eigenvalues), exact for
+points spread uniformly over a sphere.
 
 For non-spherical shapes the moment estimate is biased (about 13 % short on
 the long axis of a 4:1 ellipsoid surface), so by default the semi-axes are
 then refined, with the centre and directions kept, by the linear least-squares
-fit of \f$\sum_i k_i y_i^2 = 1\f$ in the principal frame; the refinement is
-kept only if every \f$k_i > 0\f$ and each refined axis is within a factor 2 of
+fit of `sum_i k_i y_i^2 = 1` in the principal frame; the refinement is
+kept only if every `k_i > 0` and each refined axis is within a factor 2 of
 its moment estimate (it is exact for points on an ellipsoid, and the guard
 keeps the moment estimate for partial or noisy views where it is not).
 
@@ -134,14 +139,30 @@ auto initialize_from_moments(const PointRange& points,
   Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(cov);
   Eigen::Vector3d lambda;
   Eigen::Matrix3d R;
+  // Third central moments along each direction: their signs orient the axes
+  // the same way whatever the pose of the cloud (equivariance).
+  Eigen::Vector3d skew = Eigen::Vector3d::Zero();
+  for(const auto& item : points)
+  {
+    const Eigen::Vector3d d = eig.eigenvectors().transpose() * (coords(item) - origin - mean);
+    skew += d.cwiseProduct(d).cwiseProduct(d);
+  }
   for(int i = 0; i < 3; ++i) // Eigen sorts ascending; we want the largest first
   {
     lambda[i] = (std::max)(eig.eigenvalues()[2 - i], 0.);
     Eigen::Vector3d d = eig.eigenvectors().col(2 - i);
-    int k = 0; // make the largest component positive: a deterministic sign
-    for(int j = 1; j < 3; ++j)
-      if(std::abs(d[j]) > std::abs(d[k])) k = j;
-    if(d[k] < 0.) d = -d;
+    const double m3 = skew[2 - i] / double(n);
+    if(std::abs(m3) > 1e-6 * std::pow(lambda[i], 1.5))
+    {
+      if(m3 < 0.) d = -d;
+    }
+    else // symmetric along d: any sign is as good; make the largest component positive
+    {
+      int k = 0;
+      for(int j = 1; j < 3; ++j)
+        if(std::abs(d[j]) > std::abs(d[k])) k = j;
+      if(d[k] < 0.) d = -d;
+    }
     R.col(i) = d;
   }
   R.col(2) = R.col(0).cross(R.col(1)); // right-handed

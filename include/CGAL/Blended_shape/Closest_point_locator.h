@@ -1,0 +1,210 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
+#ifndef CGAL_BLENDED_SHAPE_CLOSEST_POINT_LOCATOR_H
+#define CGAL_BLENDED_SHAPE_CLOSEST_POINT_LOCATOR_H
+
+#include <CGAL/Blended_shape/Chart_mesh.h>
+
+#include <CGAL/AABB_face_graph_triangle_primitive.h>
+#include <CGAL/AABB_traits.h>
+#include <CGAL/AABB_tree.h>
+
+#include <Eigen/Dense>
+
+#include <array>
+#include <cmath>
+#include <vector>
+
+namespace CGAL {
+namespace Blended_shapes {
+
+/// \ingroup PkgBlendedShapeFitting
+/// Where a query point's closest point on the model mesh lies.
+template <class GeomTraits>
+struct Located_point
+{
+  Chart_point chart_point;                  ///< the domain point of the closest mesh point
+  typename GeomTraits::Point_3 mesh_point;  ///< the closest point on the (piecewise linear) mesh
+  std::size_t chart_mesh = 0;               ///< index of the chart mesh holding it
+  typename Chart_mesh<GeomTraits>::face_descriptor face; ///< the face of that chart mesh holding it
+  std::array<double, 3> barycentric;        ///< in the vertex order of Chart_mesh::face_vertices()
+};
+
+namespace internal {
+
+/// Barycentric coordinates of `q` (a point of the triangle's plane) in (a, b, c).
+template <class Point_3>
+std::array<double, 3> barycentric_coordinates(const Point_3& a, const Point_3& b, const Point_3& c, const Point_3& q)
+{
+  const auto v0 = b - a, v1 = c - a, v2 = q - a;
+  const double d00 = CGAL::to_double(v0 * v0), d01 = CGAL::to_double(v0 * v1), d11 = CGAL::to_double(v1 * v1);
+  const double d20 = CGAL::to_double(v2 * v0), d21 = CGAL::to_double(v2 * v1);
+  const double den = d00 * d11 - d01 * d01;
+  if(!(den > 0.)) // degenerate triangle: take its first vertex
+    return {{1., 0., 0.}};
+  double l1 = (d11 * d20 - d01 * d21) / den, l2 = (d00 * d21 - d01 * d20) / den;
+  l1 = (std::min)((std::max)(l1, 0.), 1.);
+  l2 = (std::min)((std::max)(l2, 0.), 1. - l1);
+  return {{1. - l1 - l2, l1, l2}};
+}
+
+} // namespace internal
+
+/*!
+\ingroup PkgBlendedShapeFitting
+
+Closest points on a model made of chart meshes (sec. 3.3: the union of the
+per-chart meshes, spatially overlapping near seams), with one CGAL AABB tree
+over the faces of all of them. A located point carries its chart, face and
+barycentric coordinates, hence its domain point, at which the model is then
+evaluated analytically (the mesh is only the search structure).
+
+The chart meshes are held by reference: call rebuild() after their
+positions changed.
+*/
+template <class GeomTraits>
+class Closest_point_locator
+{
+public:
+  typedef Chart_mesh<GeomTraits> Chart_mesh_type;  ///< one chart's tessellation
+  typedef typename Chart_mesh_type::Mesh Mesh;      ///< its mesh type
+  typedef typename GeomTraits::Point_3 Point_3;     ///< the point type
+  /// The AABB primitive: a face of a chart mesh.
+  typedef CGAL::AABB_face_graph_triangle_primitive<Mesh, CGAL::Default, CGAL::Tag_false> Primitive;
+  typedef CGAL::AABB_traits<GeomTraits, Primitive> Traits; ///< the AABB traits
+  typedef CGAL::AABB_tree<Traits> Tree;                     ///< the AABB tree type
+
+  /// Builds the tree over the faces of all `charts`, which must outlive the locator.
+  explicit Closest_point_locator(const std::vector<Chart_mesh_type>& charts) : m_charts(&charts) { rebuild(); }
+
+  /// Rebuilds the tree (after the chart mesh positions moved).
+  void rebuild()
+  {
+    m_tree.clear();
+    for(const Chart_mesh_type& cm : *m_charts)
+      m_tree.insert(faces(cm.mesh()).first, faces(cm.mesh()).second, cm.mesh());
+    m_tree.build();
+    m_tree.accelerate_distance_queries();
+  }
+
+  /// The closest point to `query` on the chart meshes, with its chart point.
+  Located_point<GeomTraits> locate(const Point_3& query) const
+  {
+    const auto hit = m_tree.closest_point_and_primitive(query);
+    return make_location(hit.second.second, hit.second.first, hit.first);
+  }
+
+  /// The same answer by brute force over every face (for tests).
+  Located_point<GeomTraits> locate_brute_force(const Point_3& query) const
+  {
+    double best = HUGE_VAL;
+    Located_point<GeomTraits> result;
+    for(const Chart_mesh_type& cm : *m_charts)
+      for(auto f : faces(cm.mesh()))
+      {
+        const auto v = cm.face_vertices(f);
+        const typename GeomTraits::Triangle_3 t(cm.mesh().point(v[0]), cm.mesh().point(v[1]), cm.mesh().point(v[2]));
+        const Point_3 c = GeomTraits().construct_projected_point_3_object()(t, query);
+        const double d = CGAL::to_double(CGAL::squared_distance(c, query));
+        if(d < best)
+        {
+          best = d;
+          result = make_location(&cm.mesh(), f, c);
+        }
+      }
+    return result;
+  }
+
+  /// The AABB tree (for further queries).
+  const Tree& tree() const { return m_tree; }
+
+private:
+  Located_point<GeomTraits> make_location(const Mesh* mesh, typename Chart_mesh_type::face_descriptor f,
+                                          const Point_3& p) const
+  {
+    Located_point<GeomTraits> loc;
+    loc.mesh_point = p;
+    loc.face = f;
+    for(std::size_t i = 0; i < m_charts->size(); ++i)
+      if(&(*m_charts)[i].mesh() == mesh)
+        loc.chart_mesh = i;
+    const Chart_mesh_type& cm = (*m_charts)[loc.chart_mesh];
+    const auto v = cm.face_vertices(f);
+    loc.barycentric = internal::barycentric_coordinates(cm.mesh().point(v[0]), cm.mesh().point(v[1]),
+                                                        cm.mesh().point(v[2]), p);
+    loc.chart_point = cm.chart_point(f, loc.barycentric);
+    return loc;
+  }
+
+  const std::vector<Chart_mesh_type>* m_charts;
+  Tree m_tree;
+};
+
+/*!
+\ingroup PkgBlendedShapeFitting
+The closest point of `p` on the analytic surface of `model`, starting from
+`start` (typically the chart point of the closest point on the tessellation,
+Closest_point_locator::locate()): at most `max_iterations` safeguarded
+Gauss-Newton steps on the chart coordinates (chart Jacobian by central
+differences), each kept only if it brings the model point closer. A step
+that leaves a chart is taken in the canonical chart of its end point.
+
+The tessellation is a piecewise linear approximation: a closest point found
+on it maps back to a chart point a little off the true foot point (by the
+chord error of the chart triangle), and two charts that share a mesh edge map
+it to different such chart points. Refinement removes this.
+
+`Model` provides `point()`, `chart_domain()` and `canonical_chart_point()`.
+*/
+template <class Model>
+Chart_point refine_closest_point(const Model& model, const Eigen::Vector3d& p, Chart_point start, int max_iterations)
+{
+  Chart_point u = start;
+  auto eval = [&](const Chart_point& v) {
+    const auto x = model.point(v);
+    return Eigen::Vector3d(x.x(), x.y(), x.z());
+  };
+  Eigen::Vector3d x = eval(u);
+  double d2 = (p - x).squaredNorm();
+  for(int it = 0; it < max_iterations && d2 > 0.; ++it)
+  {
+    const double h = 1e-6;
+    Eigen::Matrix<double, 3, 2> J;
+    J.col(0) = (eval(Chart_point(u.chart, u.x + h, u.y)) - eval(Chart_point(u.chart, u.x - h, u.y))) / (2. * h);
+    J.col(1) = (eval(Chart_point(u.chart, u.x, u.y + h)) - eval(Chart_point(u.chart, u.x, u.y - h))) / (2. * h);
+    // Levenberg-regularized: where exponents above 1 flatten the map (its chart
+    // Jacobian loses rank on the poles and axes) the step still moves along
+    // the direction that is left.
+    Eigen::Matrix2d A = J.transpose() * J;
+    const double t = A.trace();
+    if(!(t > 0.) || !std::isfinite(t))
+      break;
+    A.diagonal().array() += 1e-10 * t;
+    Eigen::Vector2d step = A.ldlt().solve(J.transpose() * (p - x));
+    if(!(step.squaredNorm() > 1e-22)) // at the foot point, to the accuracy that matters
+      break;
+    bool improved = false;
+    for(int half = 0; half < 4 && !improved; ++half, step *= 0.5)
+    {
+      Chart_point v(u.chart, u.x + step[0], u.y + step[1]);
+      const Chart_domain dom = model.chart_domain(v.chart);
+      if(!dom.contains(v.x, v.y))
+        continue;
+      v = model.canonical_chart_point(v);
+      const Eigen::Vector3d xv = eval(v);
+      const double dv = (p - xv).squaredNorm();
+      if(dv < d2)
+      {
+        u = v; x = xv; d2 = dv; improved = true;
+      }
+    }
+    if(!improved)
+      break;
+  }
+  return u;
+}
+
+
+} // namespace Blended_shapes
+} // namespace CGAL
+
+#endif // CGAL_BLENDED_SHAPE_CLOSEST_POINT_LOCATOR_H

@@ -1,0 +1,276 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
+#ifndef CGAL_BLENDED_SHAPE_FIT_BLENDED_SHAPE_H
+#define CGAL_BLENDED_SHAPE_FIT_BLENDED_SHAPE_H
+
+#include <CGAL/Blended_shape/Blended_shape_fitter.h>
+#include <CGAL/Blended_shape/Deformable_model.h>
+#include <CGAL/Blended_shape/Fit_metrics.h>
+#include <CGAL/Blended_shape/Superquadric_ellipsoid.h>
+#include <CGAL/Blended_shape/initialize_from_moments.h>
+#include <CGAL/Blended_shape/parameters.h>
+
+#include <CGAL/Kernel_traits.h>
+#include <CGAL/Named_function_parameters.h>
+#include <CGAL/boost/graph/named_params_helper.h>
+
+#include <chrono>
+#include <functional>
+#include <memory>
+#include <vector>
+
+namespace CGAL {
+namespace Blended_shapes {
+
+/*!
+\ingroup PkgBlendedShapeFitting
+The closed model of an initial ellipsoid (sec. 5.3): a superquadric ellipsoid
+with e1 = e2 = 1 placed at the ellipsoid's centre and rotation.
+
+`z_axis` in {0, 1, 2} chooses which principal direction becomes the
+primitive's z axis (the axis of e1); the frame is permuted cyclically so it
+stays right-handed. The ellipsoid is the same for all three; the fits that
+start from them are not, because a superquadric with e1 != e2 is not
+symmetric under exchanging its z axis with another.
+*/
+template <class GeomTraits>
+Deformable_model<Superquadric_ellipsoid<GeomTraits>> make_initial_model(const Ellipsoid_fit<GeomTraits>& fit,
+                                                                        int z_axis = 2)
+{
+  if(z_axis < 0 || z_axis > 2)
+    throw std::invalid_argument("make_initial_model: z_axis must be 0, 1 or 2");
+  const int k = (z_axis + 1) % 3; // principal direction that becomes the primitive's x axis
+  const Eigen::Matrix3d R0 = fit.rotation_matrix();
+  Eigen::Matrix3d R;
+  std::array<double, 3> a;
+  for(int i = 0; i < 3; ++i)
+  {
+    R.col(i) = R0.col((k + i) % 3);
+    a[std::size_t(i)] = fit.axes[std::size_t((k + i) % 3)];
+  }
+  const Superquadric_ellipsoid<GeomTraits> shape(a[0], a[1], a[2], 1., 1.);
+  const Eigen::Vector3d c(CGAL::to_double(fit.center.x()), CGAL::to_double(fit.center.y()),
+                          CGAL::to_double(fit.center.z()));
+  return Deformable_model<Superquadric_ellipsoid<GeomTraits>>(shape, c, internal::quaternion_from_matrix(R));
+}
+
+/*!
+\ingroup PkgBlendedShapeFitting
+A superquadric close to `model` in shape but in another basin of the fit
+(the "similar superquadrics" of superquadric recovery from partial views):
+its z axis exchanged with its x axis (`swap` = 0) or y axis (`swap` = 1),
+with e1 and e2 exchanged; or (`swap` = 2) its cross-section turned by 45
+degrees about z with e2 replaced by 2 - e2 and the section's axes averaged
+and stretched by 2^((1 - e2)/2) (a square seen across its diagonal is a
+diamond). Same place.
+*/
+template <class GeomTraits>
+Deformable_model<Superquadric_ellipsoid<GeomTraits>>
+similar_superquadric(const Deformable_model<Superquadric_ellipsoid<GeomTraits>>& model, int swap)
+{
+  const auto q = model.shape().parameters();
+  const Eigen::Matrix3d R0 = model.rotation();
+  Eigen::Matrix3d R = R0;
+  Eigen::Vector3d a(q[0], q[1], q[2]);
+  double e1 = q[4], e2 = q[3];
+  if(swap < 2)
+  {
+    const int k = swap; // the axis that becomes z
+    R.col(2) = R0.col(k);
+    R.col(k) = -R0.col(2); // keeps R a rotation
+    std::swap(a[2], a[k]);
+  }
+  else
+  {
+    // a quarter turn of the cross-section: a squarish section (e2 < 1) seen
+    // from one side is close to a diamond-ish one (2 - e2) turned by 45 degrees
+    const double c = std::sqrt(0.5);
+    R.col(0) = c * (R0.col(0) + R0.col(1));
+    R.col(1) = c * (R0.col(1) - R0.col(0));
+    const double stretch = std::pow(2., 0.5 * (1. - q[4]));
+    const double r = 0.5 * (a[0] + a[1]) * stretch;
+    a[0] = a[1] = r;
+    e1 = q[3];
+    e2 = (std::min)((std::max)(2. - q[4], 0.1), 2.);
+  }
+  const Superquadric_ellipsoid<GeomTraits> shape(a[0], a[1], a[2], e1, e2);
+  return Deformable_model<Superquadric_ellipsoid<GeomTraits>>(shape, model.translation(),
+                                                              internal::quaternion_from_matrix(R));
+}
+
+/// \ingroup PkgBlendedShapeMetrics
+/// The metrics of the current model of `fitter` after a run() that ended with `status`.
+template <class Fitter, class GeomTraits>
+Fit_metrics compute_fit_metrics(Fitter& fitter, const Ellipsoid_fit<GeomTraits>& initial,
+                                const Fitting_status& status)
+{
+  Fit_metrics m;
+  const auto forces = fitter.forces();
+  std::vector<Eigen::Vector3d> residuals;
+  residuals.reserve(forces.size());
+  double sum = 0.;
+  for(const auto& f : forces)
+  {
+    const auto& x = f.model_point;
+    residuals.push_back(fitter.points()[f.index] - Eigen::Vector3d(CGAL::to_double(x.x()), CGAL::to_double(x.y()),
+                                                                   CGAL::to_double(x.z())));
+    sum += residuals.back().squaredNorm();
+  }
+  m.number_of_points = forces.size();
+  m.number_of_parameters = fitter.model().number_of_parameters();
+  m.iterations = status.iterations;
+  m.relative_rms = relative_rms(residuals, initial);
+  m.rms = forces.empty() ? 0. : std::sqrt(sum / double(forces.size()));
+  m.rms_over_bbox_diagonal = m.rms / fitter.bounding_box_diagonal();
+  m.seconds = status.seconds;
+  m.converged = status.converged;
+  m.aborted = status.aborted;
+  return m;
+}
+
+/// \ingroup PkgBlendedShapeFitting
+/// What fit_blended_shape() returns.
+template <class GeomTraits>
+struct Fit_result
+{
+  typedef Deformable_model<Superquadric_ellipsoid<GeomTraits>> Model; ///< the model type
+  Model model;                                  ///< the fitted model
+  Ellipsoid_fit<GeomTraits> initial_ellipsoid;  ///< the initialization (sec. 5.3), also the frame of eq. 14
+  Fit_metrics metrics;                          ///< the fit figures
+  std::vector<Chart_mesh<GeomTraits>> meshes;   ///< the model's chart meshes, positioned
+};
+
+/*!
+\ingroup PkgBlendedShapeFitting
+
+Fits a model to `points`, in one call: best-fit ellipsoid initialization
+(initialize_from_moments()), then the physics-based fit of
+Blended_shape_fitter until steady state, then the metrics.
+
+(This release fits a single superquadric ellipsoid; structural and
+topological evolution, i.e. parts and holes, come with the blending features.)
+
+\param points the input points (at least `minimum_number_of_points`, finite, not all identical)
+\param np optional named parameters.
+  From CGAL::parameters:
+  - `point_map` (default identity), `geom_traits` (default from the point type),
+  - `number_of_iterations`: the iteration limit (default 100),
+  - `visitor`: see Default_fitting_visitor (default: none),
+  - `callback`: `std::function<bool(double)>` called before each iteration with the
+    fraction of the iteration budget spent; returning false stops the fit, which
+    then holds the last accepted model (default: none),
+  - `random_seed`: chooses the subset of the first phase (default 0),
+  - `maximum_running_time`: seconds (default: unlimited).
+
+  From Blended_shapes::parameters (see Fitting_settings for meanings and defaults):
+  `integrator`, `energy_tolerance`, `force_tolerance`, `steady_iterations`,
+  `mesh_resolution`, `subset_size`, `rigid_first`, `robust_weighting`, `maximum_size_factor`,
+  `try_all_axes` (`bool`, default `true`: fit roughly from each of the three choices
+  of the primitive's z axis among the principal directions, see make_initial_model(),
+  on a quarter of the subset, at most 30 iterations each, and go on with the closest;
+  the iteration count includes these), and
+  `reference_mesh` (a pointer to a `CGAL::Surface_mesh<Point_3>`: then the
+  symmetric Chamfer distance to it is reported).
+
+\throws Input_error if the points are unusable; std::invalid_argument on invalid parameters.
+*/
+template <class PointRange, class NamedParameters = CGAL::parameters::Default_named_parameters>
+auto fit_blended_shape(const PointRange& points, const NamedParameters& np = CGAL::parameters::default_values())
+{
+  using CGAL::parameters::choose_parameter;
+  using CGAL::parameters::get_parameter;
+  typedef typename CGAL::GetPointMap<PointRange, NamedParameters>::const_type Point_map;
+  typedef typename boost::property_traits<Point_map>::value_type Point_3;
+  typedef typename CGAL::Kernel_traits<Point_3>::Kernel Default_traits;
+  typedef typename CGAL::internal_np::Lookup_named_param_def<
+    CGAL::internal_np::geom_traits_t, NamedParameters, Default_traits>::type Geom_traits;
+  typedef CGAL::Surface_mesh<typename Geom_traits::Point_3> Mesh;
+
+  const Point_map point_map = choose_parameter<Point_map>(get_parameter(np, CGAL::internal_np::point_map));
+  Fitting_settings s;
+  s.maximum_iterations = choose_parameter(get_parameter(np, CGAL::internal_np::number_of_iterations), s.maximum_iterations);
+  s.random_seed = choose_parameter(get_parameter(np, CGAL::internal_np::random_seed), s.random_seed);
+  s.maximum_running_time = choose_parameter(get_parameter(np, CGAL::internal_np::maximum_running_time), s.maximum_running_time);
+  s.integrator = choose_parameter(get_parameter(np, internal_np::integrator), s.integrator);
+  s.energy_tolerance = choose_parameter(get_parameter(np, internal_np::energy_tolerance), s.energy_tolerance);
+  s.force_tolerance = choose_parameter(get_parameter(np, internal_np::force_tolerance), s.force_tolerance);
+  s.steady_iterations = choose_parameter(get_parameter(np, internal_np::steady_iterations), s.steady_iterations);
+  s.mesh_resolution = choose_parameter(get_parameter(np, internal_np::mesh_resolution), s.mesh_resolution);
+  s.subset_size = choose_parameter(get_parameter(np, internal_np::subset_size), s.subset_size);
+  s.rigid_first = choose_parameter(get_parameter(np, internal_np::rigid_first), s.rigid_first);
+  s.robust_weighting = choose_parameter(get_parameter(np, internal_np::robust_weighting), s.robust_weighting);
+  s.maximum_size_factor = choose_parameter(get_parameter(np, internal_np::maximum_size_factor), s.maximum_size_factor);
+  const std::function<bool(double)> callback =
+    choose_parameter(get_parameter(np, CGAL::internal_np::callback), std::function<bool(double)>());
+  const Mesh* reference = choose_parameter(get_parameter(np, internal_np::reference_mesh), static_cast<const Mesh*>(nullptr));
+  auto visitor = choose_parameter(get_parameter(np, CGAL::internal_np::visitor), Default_fitting_visitor());
+
+  const bool all_axes = choose_parameter(get_parameter(np, internal_np::try_all_axes), true);
+  const auto start = std::chrono::steady_clock::now();
+
+  const auto initial = initialize_from_moments(points, CGAL::parameters::point_map(point_map));
+  typedef Deformable_model<Superquadric_ellipsoid<Geom_traits>> Model;
+  typedef Blended_shape_fitter<Model> Fitter;
+  // Each z-axis choice is fitted roughly on a small subset; the closest goes on.
+  Fitting_settings rough = s;
+  rough.subset_size = (std::max<std::size_t>)(s.subset_size / 4, 200);
+  rough.energy_tolerance = (std::max)(s.energy_tolerance, 1e-4);
+  rough.force_tolerance = (std::max)(s.force_tolerance, 1e-2);
+  rough.maximum_iterations = (std::min<std::size_t>)(s.maximum_iterations, 30);
+  Model start_model = make_initial_model(initial, 2);
+  std::size_t candidate_iterations = 0;
+  Fitting_status status;
+  if(all_axes)
+  {
+    double best_distance = HUGE_VAL;
+    for(int z_axis = 0; z_axis < 3 && !status.aborted; ++z_axis)
+    {
+      Fitter candidate(points, make_initial_model(initial, z_axis), rough, point_map);
+      status = candidate.run(visitor, callback, Fitting_phase::Subset);
+      candidate_iterations += status.iterations;
+      const double d = candidate.mean_squared_distance(false);
+      if(d < best_distance) // strict: ties keep the earlier candidate, deterministically
+      {
+        best_distance = d;
+        start_model = candidate.model();
+      }
+    }
+  }
+  // Similar superquadrics of the winner (its z axis exchanged with x or y,
+  // the exponents swapped): partial views often leave the fit in the basin of
+  // the wrong one.
+  if(all_axes && !status.aborted)
+  {
+    Fitter current(points, start_model, rough, point_map);
+    double best_distance = current.mean_squared_distance(false);
+    const Model winner = start_model;
+    for(int swap = 0; swap < 3 && !status.aborted; ++swap)
+    {
+      Fitter candidate(points, similar_superquadric(winner, swap), rough, point_map);
+      status = candidate.run(visitor, callback, Fitting_phase::Subset);
+      candidate_iterations += status.iterations;
+      const double d = candidate.mean_squared_distance(false);
+      if(d < best_distance)
+      {
+        best_distance = d;
+        start_model = candidate.model();
+      }
+    }
+  }
+  Fitter fitter(points, start_model, s, point_map);
+  Fitting_status final_status = status;
+  if(!status.aborted)
+    final_status = fitter.run(visitor, callback);
+  final_status.iterations += candidate_iterations;
+  final_status.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+
+  Fit_result<Geom_traits> result{fitter.model(), initial, compute_fit_metrics(fitter, initial, final_status),
+                                 fitter.chart_meshes()};
+  if(reference != nullptr)
+    result.metrics.chamfer_distance = symmetric_chamfer_distance(result.meshes, *reference);
+  return result;
+}
+
+} // namespace Blended_shapes
+} // namespace CGAL
+
+#endif // CGAL_BLENDED_SHAPE_FIT_BLENDED_SHAPE_H

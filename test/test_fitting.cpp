@@ -1,0 +1,379 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
+// The physics-based fit (paper sec. 5.1-5.3): AABB closest points against
+// brute force, energy decrease at fixed correspondences for both
+// integrators, recovery of random superellipsoids, equivariance,
+// determinism, abort, and bad input.
+#include "test_util.h"
+
+#include <CGAL/Blended_shape/fit_blended_shape.h>
+#include <CGAL/Blended_shape/check_primitive.h>
+#include <CGAL/Blended_shape/sample_model.h>
+
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Simple_cartesian.h>
+
+#include <random>
+#include <sstream>
+
+namespace BS = CGAL::Blended_shapes;
+
+namespace {
+
+template <class K>
+using Model = BS::Deformable_model<BS::Superquadric_ellipsoid<K>>;
+
+// A seeded random superellipsoid: a_i in [0.5, 2.5] (pairwise at least 10 %
+// apart, so that its axes are defined), exponents in [0.3, 1.7], random pose.
+template <class K>
+Model<K> random_superellipsoid(std::mt19937_64& rng)
+{
+  std::uniform_real_distribution<double> size(0.5, 2.5), expo(0.3, 1.7), shift(-5., 5.);
+  std::normal_distribution<double> g(0., 1.);
+  std::array<double, 3> a;
+  do { a = {{size(rng), size(rng), size(rng)}}; }
+  while(std::abs(a[0] / a[1] - 1.) < 0.1 || std::abs(a[1] / a[2] - 1.) < 0.1 || std::abs(a[0] / a[2] - 1.) < 0.1);
+  const BS::Superquadric_ellipsoid<K> s(a[0], a[1], a[2], expo(rng), expo(rng));
+  return Model<K>(s, Eigen::Vector3d(shift(rng), shift(rng), shift(rng)),
+                  Eigen::Vector4d(g(rng), g(rng), g(rng), g(rng)));
+}
+
+template <class K>
+double diagonal(const std::vector<typename K::Point_3>& pts)
+{
+  CGAL::Bbox_3 b;
+  for(const auto& p : pts) b += p.bbox();
+  return std::sqrt(CGAL::square(b.xmax() - b.xmin()) + CGAL::square(b.ymax() - b.ymin()) + CGAL::square(b.zmax() - b.zmin()));
+}
+
+// Surface samples of `model` (all around, or those facing an eye 10 sizes away),
+// with isotropic Gaussian noise of `noise` times the bounding-box diagonal.
+template <class K>
+std::vector<typename K::Point_3> scan(const Model<K>& model, std::size_t n, bool single_view, double noise,
+                                      std::mt19937_64& rng, double* sigma_out = nullptr)
+{
+  typename K::Point_3 eye;
+  if(single_view)
+  {
+    std::normal_distribution<double> g(0., 1.);
+    Eigen::Vector3d d(g(rng), g(rng), g(rng));
+    d = model.translation() + 10. * model.shape().parameters().template head<3>().maxCoeff() * d.normalized();
+    eye = typename K::Point_3(d[0], d[1], d[2]);
+  }
+  const auto samples = BS::sample_model_surface(model, n, unsigned(rng()), 24, single_view ? &eye : nullptr);
+  std::vector<typename K::Point_3> pts;
+  for(const auto& s : samples) pts.push_back(s.point);
+  const double sigma = noise * diagonal<K>(pts);
+  std::normal_distribution<double> g(0., sigma > 0. ? sigma : 1.);
+  if(sigma > 0.)
+    for(auto& p : pts)
+      p = typename K::Point_3(p.x() + g(rng), p.y() + g(rng), p.z() + g(rng));
+  if(sigma_out) *sigma_out = sigma;
+  return pts;
+}
+
+template <class K>
+void test_closest_points_against_brute_force(std::mt19937_64& rng)
+{
+  const Model<K> model = random_superellipsoid<K>(rng);
+  std::vector<BS::Chart_mesh<K>> charts;
+  for(std::size_t c = 0; c < model.number_of_charts(); ++c)
+  {
+    charts.emplace_back(c, model.chart_domain(c), 5);
+    charts.back().set_positions([&](const BS::Chart_point& u) { return model.point(u); });
+  }
+  const BS::Closest_point_locator<K> locator(charts);
+  const double size = model.shape().parameters().template head<3>().maxCoeff();
+  std::uniform_real_distribution<double> box(-4. * size, 4. * size), offset(-0.02 * size, 0.02 * size);
+  int checked = 0;
+  for(int i = 0; i < 400; ++i)
+  {
+    // Half far and anywhere, half near the surface (where forces come from).
+    const BS::Chart_point s = BS::random_chart_point(model.shape(), std::size_t(i % 2), rng);
+    const auto on = model.point(s);
+    const Eigen::Vector3d c = model.translation();
+    const typename K::Point_3 q = (i < 200) ? typename K::Point_3(c[0] + box(rng), c[1] + box(rng), c[2] + box(rng))
+                                            : typename K::Point_3(on.x() + offset(rng), on.y() + offset(rng), on.z() + offset(rng));
+    const auto a = locator.locate(q), b = locator.locate_brute_force(q);
+    const double da = std::sqrt(CGAL::to_double(CGAL::squared_distance(a.mesh_point, q)));
+    const double db = std::sqrt(CGAL::to_double(CGAL::squared_distance(b.mesh_point, q)));
+    BS_CHECK(std::abs(da - db) <= 1e-12 * size, "AABB distance " << da << " vs brute force " << db);
+    // The mesh point is on the face its chart point came from.
+    const auto& cm = charts[a.chart_mesh];
+    const auto v = cm.face_vertices(a.face);
+    const auto back = CGAL::barycenter(cm.mesh().point(v[0]), a.barycentric[0], cm.mesh().point(v[1]),
+                                       a.barycentric[1], cm.mesh().point(v[2]), a.barycentric[2]);
+    BS_CHECK(CGAL::squared_distance(back, a.mesh_point) < CGAL::square(1e-9 * size), "barycentric coordinates");
+    if(i < 200)
+      continue;
+    // Near the surface: the forces (closest point on the analytic surface, refined
+    // from either answer) are the same.
+    const Eigen::Vector3d p(q.x(), q.y(), q.z());
+    auto force = [&](const BS::Chart_point& start) {
+      const BS::Chart_point u = BS::refine_closest_point(model, p, start, 20);
+      const auto x = model.point(u);
+      const auto n = model.normal(u);
+      const Eigen::Vector3d nn(n.x(), n.y(), n.z());
+      return Eigen::Vector3d(nn * nn.dot(p - Eigen::Vector3d(x.x(), x.y(), x.z())));
+    };
+    const Eigen::Vector3d fa = force(a.chart_point), fb = force(b.chart_point);
+    BS_CHECK((fa - fb).norm() <= 1e-7 * size, "AABB force " << fa.transpose() << " vs brute force " << fb.transpose());
+    ++checked;
+  }
+  BS_CHECK(checked == 200, "near-surface forces compared: " << checked);
+}
+
+// The energy of the linearized dynamics at fixed correspondences, recomputed
+// here from the public forces: it must not increase across a step.
+template <class K>
+void test_energy_decrease(BS::Integrator integrator, std::mt19937_64& rng)
+{
+  const Model<K> truth = random_superellipsoid<K>(rng);
+  const auto pts = scan<K>(truth, 1500, false, 0.002, rng);
+  // Start away from the truth: other sizes and exponents, shifted.
+  Eigen::VectorXd q = truth.parameters();
+  q.head<3>() += Eigen::Vector3d(0.2, -0.1, 0.15);
+  q.tail<5>() = Eigen::Matrix<double, 5, 1>(1.3 * q[7], 0.8 * q[8], q[9], 1., 1.);
+  Model<K> start = truth;
+  start.set_parameters(q);
+  BS::Fitting_settings s;
+  s.integrator = integrator;
+  BS::Blended_shape_fitter<Model<K>> fitter(pts, start, s);
+  fitter.use_all_points(true);
+  int accepted = 0;
+  for(int it = 0; it < 8; ++it)
+  {
+    const auto forces = fitter.forces();
+    const Model<K> before = fitter.model();
+    const double true_before = fitter.mean_squared_distance(true);
+    auto fixed_energy = [&](const Model<K>& m) {
+      double e = 0.;
+      for(const auto& f : forces)
+      {
+        const auto n = before.normal(f.chart_point);
+        const auto x = m.point(f.chart_point);
+        const auto& p = pts[f.index];
+        e += 0.5 * CGAL::square(CGAL::to_double(n * (p - x)));
+      }
+      return e;
+    };
+    const double e0 = fixed_energy(before);
+    const BS::Step_report r = fitter.step();
+    const double e1 = fixed_energy(fitter.model());
+    BS_CHECK(e1 <= e0 * (1. + 1e-12), "fixed-correspondence energy increased: " << e0 << " -> " << e1);
+    BS_CHECK(std::abs(r.fixed_energy_before - e0) <= 1e-9 * e0, "reported fixed energy " << r.fixed_energy_before << " vs " << e0);
+    const double true_after = fitter.mean_squared_distance(true);
+    BS_CHECK(true_after <= true_before * (1. + 1e-12), "true energy increased: " << true_before << " -> " << true_after);
+    if(r.accepted) ++accepted;
+  }
+  BS_CHECK(accepted >= 3, "the fit did not move: " << accepted << " accepted steps");
+}
+
+// The fitted superellipsoid against the true one, modulo its symmetries: the
+// frames may differ by a signed permutation of axes (and the quaternion by its
+// sign); a_i follow their axes; if the fitted z axis is not the true z axis,
+// the shape is only the same when the true exponents are equal.
+template <class K>
+void check_recovered(const Model<K>& fit, const Model<K>& truth, const std::string& label)
+{
+  const Eigen::Matrix3d M = truth.rotation().transpose() * fit.rotation();
+  const auto qf = fit.shape().parameters(), qt = truth.shape().parameters();
+  int perm[3];
+  for(int j = 0; j < 3; ++j)
+  {
+    int i = 0;
+    for(int k = 1; k < 3; ++k)
+      if(std::abs(M(k, j)) > std::abs(M(i, j))) i = k;
+    perm[j] = i;
+    BS_CHECK(std::abs(M(i, j)) > 0.98, label << ": fitted axis " << j << " matches no true axis\n" << M);
+    BS_CHECK(std::abs(qf[j] / qt[i] - 1.) < 0.03, label << ": a" << j + 1 << " = " << qf[j] << ", true " << qt[i]);
+  }
+  if(perm[2] == 2)
+  {
+    BS_CHECK(std::abs(qf[3] - qt[3]) < 0.1 && std::abs(qf[4] - qt[4]) < 0.1,
+             label << ": exponents " << qf[3] << ", " << qf[4] << " vs " << qt[3] << ", " << qt[4]);
+  }
+  else
+    BS_CHECK(std::abs(qt[3] - qt[4]) < 0.1 && std::abs(qf[3] - qt[3]) < 0.1 && std::abs(qf[4] - qt[4]) < 0.1,
+             label << ": z axis exchanged for a shape that is not symmetric under it: " << qf.transpose()
+                   << " vs " << qt.transpose());
+}
+
+// Full views: every case must meet the RMS criterion and give back the
+// parameters. Single views: the RMS criterion, but a superquadric fitted to a
+// partial view has several rest states; despite the starts from three axes and
+// the similar superquadrics, about 1 random view in 40 ends in a wrong one
+// (benchmark/fit_single_superquadric measures the rate). So at most one single
+// view in five may miss the criterion; every miss is printed.
+template <class K>
+void test_recovery(int full_views, int single_views, std::mt19937_64& rng)
+{
+  int single_view_misses = 0;
+  for(int t = 0; t < full_views + single_views; ++t)
+  {
+    const bool single = t >= full_views;
+    const Model<K> truth = random_superellipsoid<K>(rng);
+    double sigma = 0.;
+    const auto pts = scan<K>(truth, 3000, single, 0.002, rng, &sigma);
+    const auto r = BS::fit_blended_shape(pts);
+    std::ostringstream label;
+    label << (single ? "single view" : "full view") << " #" << t << " truth " << truth.shape().parameters().transpose();
+    const double noise = sigma / diagonal<K>(pts);
+    BS_CHECK(r.metrics.converged, label.str() << ": not converged in " << r.metrics.iterations);
+    const bool meets = r.metrics.rms_over_bbox_diagonal <= 1.2 * noise;
+    if(!meets)
+      std::cerr << label.str() << ": RMS/diagonal " << r.metrics.rms_over_bbox_diagonal << " vs noise " << noise
+                << "; fit " << r.model.parameters().transpose() << ", truth " << truth.parameters().transpose() << "\n";
+    if(single)
+      single_view_misses += meets ? 0 : 1;
+    else
+    {
+      BS_CHECK(meets, label.str() << ": full view misses the RMS criterion");
+      check_recovered(r.model, truth, label.str());
+    }
+  }
+  BS_CHECK(5 * single_view_misses <= single_views,
+           single_view_misses << " of " << single_views << " single views missed the RMS criterion");
+}
+
+// Rotating, translating and scaling the input moves the fitted model the same
+// way and keeps the relative RMS.
+template <class K>
+void test_equivariance(std::mt19937_64& rng)
+{
+  typedef typename K::Point_3 Point_3;
+  // A full view with exponents <= 1. Known limitation: with exponents above 1
+  // the map flattens on the equator and the poles, where the foot-point
+  // projection converges slowly; rounding differences between the two runs
+  // then change where they stop, by up to about 5e-5 of the size.
+  Model<K> truth = random_superellipsoid<K>(rng);
+  Eigen::VectorXd q = truth.parameters();
+  q[10] = (std::min)(q[10], 1.);
+  q[11] = (std::min)(q[11], 1.);
+  truth.set_parameters(q);
+  const auto pts = scan<K>(truth, 2000, false, 0.002, rng);
+  std::normal_distribution<double> g(0., 1.);
+  const Eigen::Matrix3d R = BS::internal::rotation_matrix(Eigen::Vector4d(g(rng), g(rng), g(rng), g(rng)));
+  const Eigen::Vector3d t(10. * g(rng), 10. * g(rng), 10. * g(rng));
+  const double scale = 3.7;
+  auto T = [&](const Point_3& p) {
+    const Eigen::Vector3d y = scale * (R * Eigen::Vector3d(p.x(), p.y(), p.z())) + t;
+    return Point_3(y[0], y[1], y[2]);
+  };
+  std::vector<Point_3> moved;
+  for(const auto& p : pts) moved.push_back(T(p));
+  const auto a = BS::fit_blended_shape(pts), b = BS::fit_blended_shape(moved);
+  for(int j = 0; j < 3; ++j)
+    BS_CHECK(std::abs(a.metrics.relative_rms[std::size_t(j)] - b.metrics.relative_rms[std::size_t(j)]) <=
+               1e-6 * a.metrics.relative_rms[std::size_t(j)],
+             "relative RMS " << j << ": " << a.metrics.relative_rms[std::size_t(j)] << " vs "
+                             << b.metrics.relative_rms[std::size_t(j)]);
+  double worst = 0.;
+  std::mt19937_64 r2(3);
+  for(int i = 0; i < 500; ++i)
+  {
+    const BS::Chart_point u = BS::random_chart_point(a.model.shape(), std::size_t(i % 2), r2);
+    worst = (std::max)(worst, std::sqrt(CGAL::to_double(CGAL::squared_distance(T(a.model.point(u)), b.model.point(u)))));
+  }
+  const double diag = diagonal<K>(moved);
+  BS_CHECK(worst <= 1e-6 * diag, "transformed model differs by " << worst / diag << " of the diagonal");
+}
+
+template <class K>
+void test_determinism_and_abort(std::mt19937_64& rng)
+{
+  const Model<K> truth = random_superellipsoid<K>(rng);
+  const auto pts = scan<K>(truth, 6000, true, 0.003, rng);
+  const auto np = CGAL::parameters::random_seed(7);
+  const auto a = BS::fit_blended_shape(pts, np), b = BS::fit_blended_shape(pts, np);
+  BS_CHECK(a.model.parameters() == b.model.parameters(), "same input and seed: different models");
+  BS_CHECK(a.metrics.iterations == b.metrics.iterations && a.metrics.relative_rms == b.metrics.relative_rms,
+           "same input and seed: different metrics");
+
+  int calls = 0;
+  const std::function<bool(double)> stop_at_third = [&](double f) {
+    BS_CHECK(f >= 0. && f <= 1., "callback fraction " << f);
+    return ++calls < 3;
+  };
+  const auto c = BS::fit_blended_shape(pts, CGAL::parameters::callback(stop_at_third));
+  BS_CHECK(c.metrics.aborted && !c.metrics.converged && calls == 3, "abort: calls " << calls);
+  const Eigen::VectorXd q = c.model.parameters();
+  bool valid = q.allFinite();
+  for(std::size_t i = 0; i < c.model.number_of_parameters(); ++i)
+    valid = valid && q[Eigen::Index(i)] >= c.model.parameter_lower_bound(i) &&
+            q[Eigen::Index(i)] <= c.model.parameter_upper_bound(i);
+  BS_CHECK(valid && std::isfinite(c.metrics.rms) && std::isfinite(c.metrics.relative_rms[2]),
+           "aborted fit left an invalid model: " << q.transpose());
+}
+
+template <class K>
+void test_explicit_integrator(std::mt19937_64& rng)
+{
+  const Model<K> truth(BS::Superquadric_ellipsoid<K>(1.5, 1., 0.6), Eigen::Vector3d(1., 2., 3.),
+                       Eigen::Vector4d(0.9, 0.1, 0.3, -0.2));
+  const auto pts = scan<K>(truth, 2000, false, 0.002, rng);
+  const auto gn = BS::fit_blended_shape(pts);
+  const auto ex = BS::fit_blended_shape(pts, BS::parameters::integrator(BS::Integrator::Explicit).number_of_iterations(2000));
+  BS_CHECK(ex.metrics.rms_over_bbox_diagonal <= 1.05 * gn.metrics.rms_over_bbox_diagonal,
+           "explicit " << ex.metrics.rms_over_bbox_diagonal << " vs implicit " << gn.metrics.rms_over_bbox_diagonal);
+  BS_CHECK(ex.metrics.iterations > gn.metrics.iterations,
+           "explicit took " << ex.metrics.iterations << " iterations, implicit " << gn.metrics.iterations);
+}
+
+template <class K>
+void test_bad_input()
+{
+  typedef typename K::Point_3 Point_3;
+  auto code_of = [](const std::vector<Point_3>& pts) {
+    try { BS::fit_blended_shape(pts); }
+    catch(const BS::Input_error& e) { return int(e.code()); }
+    return -1;
+  };
+  std::vector<Point_3> few(5, Point_3(0, 0, 0)), same(50, Point_3(1, 1, 1)), nan_cloud;
+  for(int i = 0; i < 5; ++i) few[std::size_t(i)] = Point_3(i, i * i, 1);
+  for(int i = 0; i < 50; ++i) nan_cloud.emplace_back(i, std::sin(i), i % 3);
+  nan_cloud[17] = Point_3(1., std::nan(""), 2.);
+  BS_CHECK(code_of({}) == BS::Input_error::No_points, "empty cloud");
+  BS_CHECK(code_of(few) == BS::Input_error::Too_few_points, "5 points");
+  BS_CHECK(code_of(same) == BS::Input_error::All_points_identical, "identical points");
+  BS_CHECK(code_of(nan_cloud) == BS::Input_error::Non_finite_point, "NaN point");
+  std::vector<Point_3> ok;
+  for(int i = 0; i < 100; ++i) ok.emplace_back(std::cos(i), std::sin(i), 0.1 * (i % 7));
+  int thrown = 0;
+  try { BS::fit_blended_shape(ok, BS::parameters::mesh_resolution(1)); } catch(const std::invalid_argument&) { ++thrown; }
+  try { BS::fit_blended_shape(ok, CGAL::parameters::number_of_iterations(0)); } catch(const std::invalid_argument&) { ++thrown; }
+  try { BS::fit_blended_shape(ok, BS::parameters::energy_tolerance(-1.)); } catch(const std::invalid_argument&) { ++thrown; }
+  BS_CHECK(thrown == 3, "invalid settings accepted: " << 3 - thrown);
+  // A flat cloud is a documented result, never NaN.
+  std::vector<Point_3> flat;
+  for(int i = 0; i < 200; ++i) flat.emplace_back(i % 20, i / 20, 0.);
+  const auto r = BS::fit_blended_shape(flat);
+  BS_CHECK(r.model.parameters().allFinite() && std::isfinite(r.metrics.rms), "flat cloud");
+}
+
+template <class K>
+void run(const char* kernel, bool full)
+{
+  std::mt19937_64 rng(20261121);
+  const int before = blended_shape_test::failures();
+  test_closest_points_against_brute_force<K>(rng);
+  test_energy_decrease<K>(BS::Integrator::Gauss_newton, rng);
+  test_energy_decrease<K>(BS::Integrator::Explicit, rng);
+  test_recovery<K>(full ? 8 : 2, 5, rng);
+  test_equivariance<K>(rng);
+  test_determinism_and_abort<K>(rng);
+  if(full)
+    test_explicit_integrator<K>(rng);
+  test_bad_input<K>();
+  std::cout << "fitting with " << kernel << (blended_shape_test::failures() == before ? ": SUCCESS" : ": FAILED")
+            << std::endl;
+}
+
+} // namespace
+
+int main()
+{
+  run<CGAL::Exact_predicates_inexact_constructions_kernel>("Epick", true);
+  run<CGAL::Simple_cartesian<double>>("Simple_cartesian<double>", false);
+  blended_shape_test::report("test_fitting");
+  return blended_shape_test::exit_code();
+}
