@@ -1,0 +1,60 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
+#ifndef CGAL_BLENDED_SHAPE_INTERNAL_COMPARE_SUPERQUADRICS_H
+#define CGAL_BLENDED_SHAPE_INTERNAL_COMPARE_SUPERQUADRICS_H
+
+#include <Eigen/Core>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+
+namespace CGAL {
+namespace Blended_shapes {
+namespace internal {
+
+// How far a fitted superquadric ellipsoid is from a true one, modulo the
+// symmetries of the representation: the frames may differ by a signed
+// permutation of axes (and the quaternion by its sign). Each fitted axis is
+// matched to the true axis it is most parallel to; sizes follow their axes.
+// If the fitted z axis is not the true z axis, the shapes are only the same
+// when the true exponents are equal, so both fitted exponents are compared
+// with both true ones. For tests and benchmarks.
+struct Superquadric_comparison
+{
+  double axis_alignment = 0.;          // smallest |cos| between matched axes
+  double size_error = 0.;              // largest |a_fit / a_true - 1|
+  double exponent_error = 0.;          // largest |e_fit - e_true| (see above)
+  bool z_axis_exchanged = false;
+};
+
+template <class Model>
+Superquadric_comparison compare_superquadrics(const Model& fit, const Model& truth)
+{
+  Superquadric_comparison c;
+  const Eigen::Matrix3d M = truth.rotation().transpose() * fit.rotation();
+  const auto qf = fit.shape().parameters(), qt = truth.shape().parameters();
+  c.axis_alignment = 1.;
+  int perm[3];
+  for(int j = 0; j < 3; ++j)
+  {
+    int i = 0;
+    for(int k = 1; k < 3; ++k)
+      if(std::abs(M(k, j)) > std::abs(M(i, j))) i = k;
+    perm[j] = i;
+    c.axis_alignment = (std::min)(c.axis_alignment, std::abs(M(i, j)));
+    c.size_error = (std::max)(c.size_error, std::abs(qf[j] / qt[i] - 1.));
+  }
+  c.z_axis_exchanged = perm[2] != 2;
+  if(!c.z_axis_exchanged)
+    c.exponent_error = (std::max)(std::abs(qf[3] - qt[3]), std::abs(qf[4] - qt[4]));
+  else
+    c.exponent_error = (std::max)({std::abs(qf[3] - qt[3]), std::abs(qf[4] - qt[4]),
+                                   std::abs(qf[3] - qt[4]), std::abs(qf[4] - qt[3])});
+  return c;
+}
+
+} // namespace internal
+} // namespace Blended_shapes
+} // namespace CGAL
+
+#endif // CGAL_BLENDED_SHAPE_INTERNAL_COMPARE_SUPERQUADRICS_H
