@@ -13,6 +13,7 @@
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Simple_cartesian.h>
 
+#include <iomanip>
 #include <random>
 #include <sstream>
 
@@ -213,7 +214,7 @@ void test_equivariance(std::mt19937_64& rng)
   for(int j = 0; j < 3; ++j)
     BS_CHECK(std::abs(a.metrics.relative_rms[std::size_t(j)] - b.metrics.relative_rms[std::size_t(j)]) <=
                1e-6 * a.metrics.relative_rms[std::size_t(j)],
-             "relative RMS " << j << ": " << a.metrics.relative_rms[std::size_t(j)] << " vs "
+             "relative RMS " << j << ": " << std::setprecision(12) << a.metrics.relative_rms[std::size_t(j)] << " vs "
                              << b.metrics.relative_rms[std::size_t(j)]);
   double worst = 0.;
   std::mt19937_64 r2(3);
@@ -224,6 +225,8 @@ void test_equivariance(std::mt19937_64& rng)
   }
   const double diag = diagonal<K>(moved);
   BS_CHECK(worst <= 1e-6 * diag, "transformed model differs by " << worst / diag << " of the diagonal");
+  std::cerr << "equivariance: model difference " << worst / diag << " of the diagonal, iterations "
+            << a.metrics.iterations << " / " << b.metrics.iterations << "\n";
 }
 
 template <class K>
@@ -298,15 +301,22 @@ void test_bad_input()
   BS_CHECK(r.model.parameters().allFinite() && std::isfinite(r.metrics.rms), "flat cloud");
 }
 
+#ifdef BLENDED_SHAPE_REDUCED_TESTS
+constexpr bool reduced = true; // sanitizer builds: same code paths, fewer cases
+#else
+constexpr bool reduced = false;
+#endif
+
 template <class K>
 void run(const char* kernel, bool full)
 {
+  full = full && !reduced;
   std::mt19937_64 rng(20261121);
   const int before = blended_shape_test::failures();
   test_closest_points_against_brute_force<K>(rng);
   test_energy_decrease<K>(BS::Integrator::Gauss_newton, rng);
   test_energy_decrease<K>(BS::Integrator::Explicit, rng);
-  test_recovery<K>(full ? 8 : 2, 5, rng);
+  test_recovery<K>(full ? 8 : 2, reduced ? 1 : 5, rng);
   test_equivariance<K>(rng);
   test_determinism_and_abort<K>(rng);
   if(full)

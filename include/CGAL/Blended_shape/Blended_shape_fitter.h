@@ -58,10 +58,10 @@ struct Fitting_settings
 {
   Integrator integrator = Integrator::Gauss_newton; ///< the integration scheme
   std::size_t maximum_iterations = 100;   ///< iterations over all phases
-  double energy_tolerance = 1e-9;         ///< relative energy decrease of one step
+  double energy_tolerance = 1e-7;         ///< relative energy decrease of one step
   double force_tolerance = 1e-4;          ///< largest scaled parameter force, see Step_report::scaled_force
   std::size_t steady_iterations = 2;      ///< consecutive steps under both tolerances
-  int mesh_resolution = 16;               ///< chart tessellation (rings from pole to equator)
+  int mesh_resolution = 10;               ///< chart tessellation (rings from pole to equator)
   int projection_iterations = 10;         ///< at most this many Gauss-Newton steps from the mesh closest point to the surface's
   std::size_t subset_size = 4000;         ///< points used before the all-points phase (0: all from the start)
   unsigned int random_seed = 0;           ///< chooses the subset
@@ -283,8 +283,19 @@ public:
       E0 += 0.5 * w[k] * r * r;
     }
     H.template triangularView<Eigen::Upper>() = H.transpose();
+    // Parameters held at a bound by a force pushing past it are frozen for
+    // this step (an active set): a step computed without the bound and then
+    // clamped points the wrong way and only makes the damping grow.
+    const Eigen::VectorXd q = m_model.parameters();
+    std::vector<bool> free_parameter = m_active_parameters;
     for(std::size_t i = 0; i < n; ++i)
-      if(!m_active_parameters[i])
+    {
+      const Eigen::Index ii = Eigen::Index(i);
+      if((g[ii] < 0. && q[ii] <= lower_bound(i)) || (g[ii] > 0. && q[ii] >= upper_bound(i)))
+        free_parameter[i] = false;
+    }
+    for(std::size_t i = 0; i < n; ++i)
+      if(!free_parameter[i])
       {
         H.row(Eigen::Index(i)).setZero();
         H.col(Eigen::Index(i)).setZero();
@@ -294,14 +305,12 @@ public:
     report.fixed_energy_before = report.fixed_energy_after = E0;
     report.energy_after = report.energy_before;
 
-    // Scaled force: cosine between the residual and each parameter direction,
-    // leaving out parameters held at a bound by a force pushing them past it.
-    const Eigen::VectorXd q = m_model.parameters();
+    // Scaled force: cosine between the residual and each free parameter direction.
     const double floor = CGAL::square(1e-12 * m_diameter) * double(active.size());
     for(std::size_t i = 0; i < n; ++i)
     {
       const Eigen::Index ii = Eigen::Index(i);
-      if((g[ii] < 0. && q[ii] <= lower_bound(i)) || (g[ii] > 0. && q[ii] >= upper_bound(i)))
+      if(!free_parameter[i])
         continue;
       const double den = std::sqrt(2. * (E0 + floor) * H(ii, ii));
       if(den > 0.)
@@ -331,7 +340,7 @@ public:
       }
       if(++sweeps > 2)
         return false;
-      Correspondences moved = attach(trial, active);
+      Correspondences moved = attach(trial, active, &corr);
       const double F1 = true_energy(moved.distance, c);
       if(!(F1 <= report.energy_before))
         return false;
@@ -546,18 +555,34 @@ private:
     return m_correspondences;
   }
 
-  Correspondences attach(const Model& model, const std::vector<std::size_t>& active)
+  // With `previous` (the correspondences of the same points on the model
+  // before a small step), each projection also starts from the previous foot
+  // point and the closer result wins: the true energy of consecutive models
+  // is then measured consistently, and a nearby foot point is not lost to a
+  // tessellation artifact.
+  Correspondences attach(const Model& model, const std::vector<std::size_t>& active,
+                         const Correspondences* previous = nullptr)
   {
     position_meshes(model);
     Correspondences c;
     c.u.resize(active.size());
     c.normal.resize(active.size());
     c.distance.resize(active.size());
+    auto squared_distance = [&](const Eigen::Vector3d& p, const Chart_point& u) {
+      const Point_3 x = model.point(u);
+      return (p - Eigen::Vector3d(x.x(), x.y(), x.z())).squaredNorm();
+    };
     for(std::size_t k = 0; k < active.size(); ++k)
     {
       const Eigen::Vector3d& p = m_points[active[k]];
       c.u[k] = refine_closest_point(model, p, m_locator->locate(Point_3(p[0], p[1], p[2])).chart_point,
                                      m_settings.projection_iterations);
+      if(previous != nullptr)
+      {
+        const Chart_point w = refine_closest_point(model, p, previous->u[k], m_settings.projection_iterations);
+        if(squared_distance(p, w) < squared_distance(p, c.u[k]))
+          c.u[k] = w;
+      }
       const Point_3 x = model.point(c.u[k]);
       const Vector_3 nv = model.normal(c.u[k]);
       c.normal[k] = Eigen::Vector3d(nv.x(), nv.y(), nv.z());

@@ -110,9 +110,10 @@ Fit_metrics compute_fit_metrics(Fitter& fitter, const Ellipsoid_fit<GeomTraits>&
   double sum = 0.;
   for(const auto& f : forces)
   {
-    const auto& x = f.model_point;
-    residuals.push_back(fitter.points()[f.index] - Eigen::Vector3d(CGAL::to_double(x.x()), CGAL::to_double(x.y()),
-                                                                   CGAL::to_double(x.z())));
+    // Reported figures deserve foot points polished beyond what a fitting step needs.
+    const Eigen::Vector3d& p = fitter.points()[f.index];
+    const auto x = fitter.model().point(refine_closest_point(fitter.model(), p, f.chart_point, 50));
+    residuals.push_back(p - Eigen::Vector3d(CGAL::to_double(x.x()), CGAL::to_double(x.y()), CGAL::to_double(x.z())));
     sum += residuals.back().squaredNorm();
   }
   m.number_of_points = forces.size();
@@ -166,7 +167,7 @@ topological evolution, i.e. parts and holes, come with the blending features.)
   `mesh_resolution`, `subset_size`, `rigid_first`, `robust_weighting`, `maximum_size_factor`,
   `try_all_axes` (`bool`, default `true`: fit roughly from each of the three choices
   of the primitive's z axis among the principal directions, see make_initial_model(),
-  on a quarter of the subset, at most 30 iterations each, and go on with the closest;
+  on an eighth of the subset, at most 20 iterations each, and go on with the closest;
   the iteration count includes these), and
   `reference_mesh` (a pointer to a `CGAL::Surface_mesh<Point_3>`: then the
   symmetric Chamfer distance to it is reported).
@@ -212,10 +213,10 @@ auto fit_blended_shape(const PointRange& points, const NamedParameters& np = CGA
   typedef Blended_shape_fitter<Model> Fitter;
   // Each z-axis choice is fitted roughly on a small subset; the closest goes on.
   Fitting_settings rough = s;
-  rough.subset_size = (std::max<std::size_t>)(s.subset_size / 4, 200);
+  rough.subset_size = (std::max<std::size_t>)(s.subset_size / 8, 200);
   rough.energy_tolerance = (std::max)(s.energy_tolerance, 1e-4);
   rough.force_tolerance = (std::max)(s.force_tolerance, 1e-2);
-  rough.maximum_iterations = (std::min<std::size_t>)(s.maximum_iterations, 30);
+  rough.maximum_iterations = (std::min<std::size_t>)(s.maximum_iterations, 20);
   Model start_model = make_initial_model(initial, 2);
   std::size_t candidate_iterations = 0;
   Fitting_status status;
