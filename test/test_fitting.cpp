@@ -21,6 +21,12 @@ namespace BS = CGAL::Blended_shapes;
 
 namespace {
 
+#ifdef BLENDED_SHAPE_REDUCED_TESTS
+constexpr bool reduced = true; // sanitizer builds: same code paths, fewer cases
+#else
+constexpr bool reduced = false;
+#endif
+
 template <class K>
 using Model = BS::Deformable_model<BS::Superquadric_ellipsoid<K>>;
 
@@ -233,7 +239,7 @@ template <class K>
 void test_determinism_and_abort(std::mt19937_64& rng)
 {
   const Model<K> truth = random_superellipsoid<K>(rng);
-  const auto pts = scan<K>(truth, 6000, true, 0.003, rng);
+  const auto pts = scan<K>(truth, reduced ? 1500 : 6000, true, 0.003, rng);
   const auto np = CGAL::parameters::random_seed(7);
   const auto a = BS::fit_blended_shape(pts, np), b = BS::fit_blended_shape(pts, np);
   BS_CHECK(a.model.parameters() == b.model.parameters(), "same input and seed: different models");
@@ -301,11 +307,6 @@ void test_bad_input()
   BS_CHECK(r.model.parameters().allFinite() && std::isfinite(r.metrics.rms), "flat cloud");
 }
 
-#ifdef BLENDED_SHAPE_REDUCED_TESTS
-constexpr bool reduced = true; // sanitizer builds: same code paths, fewer cases
-#else
-constexpr bool reduced = false;
-#endif
 
 template <class K>
 void run(const char* kernel, bool full)

@@ -94,7 +94,10 @@ struct Step_report
   /// `max_k |f_q[k]| / sqrt(2 E (J^T J)[k][k])`: the largest cosine between the residual
   /// and a parameter direction; 0 at a rest state, scale-free.
   double scaled_force = 0.;
-  bool accepted = false;      ///< false if no step lowered the energy (a rest state or a bound)
+  bool accepted = false;      ///< whether the parameters moved
+  /// No step can lower the energy any more: the proposed change is negligible, or the
+  /// damping (Gauss-Newton) or the step-size reduction (explicit) is exhausted.
+  bool stalled = false;
 };
 
 /// \ingroup PkgBlendedShapeFitting
@@ -368,14 +371,22 @@ public:
     }
     else
     {
-      // dt = 1 / lambda_max(J^T J): stable for the linearized dynamics q' = f_q.
+      // dt = 1 / lambda_max(J^T J): stable for the linearized dynamics q' = f_q;
+      // times a reduction that persists between steps (halved on failure,
+      // grown back on success) where the nonlinearity needs shorter steps.
       const double lmax =
         Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(H, Eigen::EigenvaluesOnly).eigenvalues().maxCoeff();
-      double dt = (lmax > 0.) ? 1. / lmax : 0.;
-      for(int attempt = 0; attempt < 12 && !report.accepted && !negligible && sweeps <= 2 && dt > 0.;
-          ++attempt, dt *= 0.5)
-        try_step(dt * g);
+      const double dt = (lmax > 0.) ? 1. / lmax : 0.;
+      for(int attempt = 0; attempt < 12 && !report.accepted && !negligible && sweeps <= 2 && dt > 0.; ++attempt)
+      {
+        if(try_step(m_dt_scale * dt * g))
+          m_dt_scale = (std::min)(1., 1.5 * m_dt_scale);
+        else
+          m_dt_scale *= 0.5;
+      }
     }
+    report.stalled = !report.accepted &&
+                     (negligible || m_lambda >= 1e10 || m_dt_scale <= 1e-8 || !(report.energy_before > 0.));
     if(!report.accepted)
       position_meshes(m_model); // a rejected trial left the meshes where it was
     return report;
@@ -425,8 +436,8 @@ public:
       ++in_phase;
       visitor.on_iteration(status.iterations, r.energy_after, r.points_used);
       const double decrease = (r.energy_before - r.energy_after) / (std::max)(r.energy_before, 1e-300);
-      const bool at_rest = !r.accepted || (decrease <= m_settings.energy_tolerance &&
-                                           r.scaled_force <= m_settings.force_tolerance);
+      const bool at_rest = r.stalled || (r.accepted && decrease <= m_settings.energy_tolerance &&
+                                         r.scaled_force <= m_settings.force_tolerance);
       steady = at_rest ? steady + 1 : 0;
       const bool phase_done = steady >= m_settings.steady_iterations ||
                               (phase == Fitting_phase::Rigid && in_phase >= m_settings.rigid_iterations);
@@ -624,7 +635,8 @@ private:
   Correspondences m_correspondences;     // of m_model, on all points or the subset
   bool m_correspondences_valid = false;
   bool m_correspondences_all = false;
-  double m_lambda = 1e-3;
+  double m_lambda = 1e-3;    // Gauss-Newton damping
+  double m_dt_scale = 1.;    // explicit integrator: reduction of the stable step
 };
 
 } // namespace Blended_shapes
