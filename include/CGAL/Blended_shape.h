@@ -7,6 +7,9 @@
 #include <CGAL/Blended_shape/Chart_mesh.h>
 #include <CGAL/Blended_shape/Superquadric_ellipsoid.h>
 #include <CGAL/Blended_shape/Superquadric_toroid.h>
+#include <CGAL/Blended_shape/Hole_component.h>
+#include <CGAL/Blended_shape/Blending_function.h>
+#include <CGAL/Blended_shape/Blending_region.h>
 #include <CGAL/Blended_shape/check_primitive.h>
 #include <CGAL/Blended_shape/Input_error.h>
 #include <CGAL/Blended_shape/check_points.h>
@@ -19,5 +22,7 @@
 #include <CGAL/Blended_shape/Fit_metrics.h>
 #include <CGAL/Blended_shape/fit_blended_shape.h>
 #include <CGAL/Blended_shape/sample_model.h>
+#include <CGAL/Blended_shape/Range_scan_simulator.h>
+#include <CGAL/Blended_shape/CAD_objects.h>
 
 #endif // CGAL_BLENDED_SHAPE_H

@@ -127,8 +127,9 @@ public:
   /// The parameter Jacobian ds/dq (3 x 7) at `p`, and the point itself.
   Point_3 point_and_jacobian(const Chart_point& p, Jacobian& J) const
   {
-    const double cu = std::cos(p.y), su = std::sin(p.y);
-    const double cv = std::cos(p.x), sv = std::sin(p.x);
+    double cu, su, cv, sv;
+    internal::cos_sin(p.y, cu, su);
+    internal::cos_sin(p.x, cv, sv);
     const internal::Signed_power Cu(cu, m_q[E1]), Su(su, m_q[E1]);
     const internal::Signed_power Cv(cv, m_q[E2]), Sv(sv, m_q[E2]);
     const double a1 = m_q[A1], a2 = m_q[A2], a3 = m_q[A3];
@@ -155,8 +156,9 @@ public:
   /// |sin|^(e-1) singularities of the signed powers.
   Vector_3 normal(const Chart_point& p) const
   {
-    const double cu = std::cos(p.y), su = std::sin(p.y);
-    const double cv = std::cos(p.x), sv = std::sin(p.x);
+    double cu, su, cv, sv;
+    internal::cos_sin(p.y, cu, su);
+    internal::cos_sin(p.x, cv, sv);
     const double k1 = 2. - m_q[E1], k2 = 2. - m_q[E2];
     const double a1 = m_q[A1], a2 = m_q[A2], a3 = m_q[A3];
     const double cu_e = internal::signed_pow(cu, m_q[E1]);
