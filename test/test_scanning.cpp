@@ -7,6 +7,7 @@
 #include <CGAL/Blended_shape/Range_scan_simulator.h>
 
 #include "test_util.h"
+#include "tool_test_util.h"
 
 #include <CGAL/AABB_face_graph_triangle_primitive.h>
 #include <CGAL/AABB_traits.h>
@@ -570,27 +571,6 @@ void test_bad_cameras()
 
 // ---------------------------------------------------------------- writing
 
-struct Temp_dir
-{
-  fs::path path;
-  Temp_dir()
-  {
-    const auto stamp = std::chrono::steady_clock::now().time_since_epoch().count();
-    path = fs::temp_directory_path() / ("blended_test_scanning_" + std::to_string(stamp));
-    fs::create_directories(path);
-  }
-  ~Temp_dir()
-  {
-    std::error_code ignored;
-    fs::remove_all(path, ignored);
-  }
-  std::string operator/(const std::string& name) const { return (path / name).string(); }
-  std::size_t number_of_files() const
-  {
-    return std::size_t(std::distance(fs::directory_iterator(path), fs::directory_iterator()));
-  }
-};
-
 template <class K>
 void test_writers(const Temp_dir& dir)
 {
@@ -811,25 +791,6 @@ void test_bad_cad_parameters()
 
 // ---------------------------------------------------------------- command-line tools
 
-// Runs a command with stdout and stderr captured; returns the exit code.
-int run(const std::string& command, const Temp_dir& dir, std::string* err = nullptr)
-{
-  const std::string out_file = dir / "cmd_stdout.txt", err_file = dir / "cmd_stderr.txt";
-  const int status = std::system((command + " >\"" + out_file + "\" 2>\"" + err_file + "\"").c_str());
-  std::ifstream in(err_file);
-  std::stringstream text;
-  text << in.rdbuf();
-  if(err)
-    *err = text.str();
-  std::error_code ignored;
-  fs::remove(out_file, ignored);
-  fs::remove(err_file, ignored);
-  if(status == -1 || !WIFEXITED(status))
-    return -1;
-  return WEXITSTATUS(status);
-}
-
-std::string quote(const std::string& s) { return "\"" + s + "\""; }
 
 void test_tools(const Temp_dir& dir)
 {
@@ -982,14 +943,14 @@ int main()
   test_bad_cameras<SC>();
   test_bad_cameras<EPICK>();
   {
-    Temp_dir dir;
+    Temp_dir dir("blended_test_scanning");
     test_writers<SC>(dir);
     test_writers<EPICK>(dir);
   }
   test_cad_objects();
   test_bad_cad_parameters();
   {
-    Temp_dir dir;
+    Temp_dir dir("blended_test_scanning");
     test_tools(dir);
   }
   return blended_shape_test::exit_code();

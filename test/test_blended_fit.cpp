@@ -1,0 +1,249 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
+// The blended_fit tool: bad input exits non-zero with a message and writes
+// nothing; a good run writes valid JSON with every documented key, and the
+// mesh, hierarchy and model files.
+#include "test_util.h"
+#include "tool_test_util.h"
+
+#include <CGAL/Blended_shape/internal/synthetic_scans.h>
+
+#include <CGAL/IO/polygon_soup_io.h>
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+
+#include <cctype>
+#include <fstream>
+#include <map>
+#include <random>
+#include <set>
+
+namespace BS = CGAL::Blended_shapes;
+typedef CGAL::Exact_predicates_inexact_constructions_kernel K;
+
+namespace {
+
+const std::string tool = BLENDED_FIT_EXE;
+
+// A strict little JSON reader: validates the whole text and collects the
+// top-level keys and the top-level number values.
+class Json_checker
+{
+public:
+  explicit Json_checker(const std::string& text) : m_s(text) {}
+  bool valid()
+  {
+    skip();
+    if(!value(0)) return false;
+    skip();
+    return m_i == m_s.size();
+  }
+  std::set<std::string> keys;
+  std::map<std::string, double> numbers;
+
+private:
+  void skip() { while(m_i < m_s.size() && std::isspace(static_cast<unsigned char>(m_s[m_i]))) ++m_i; }
+  bool literal(const char* word)
+  {
+    const std::string w(word);
+    if(m_s.compare(m_i, w.size(), w) != 0) return false;
+    m_i += w.size();
+    return true;
+  }
+  bool string(std::string* out)
+  {
+    if(m_i >= m_s.size() || m_s[m_i] != '"') return false;
+    ++m_i;
+    std::string text;
+    while(m_i < m_s.size() && m_s[m_i] != '"')
+    {
+      if(static_cast<unsigned char>(m_s[m_i]) < 0x20) return false;
+      if(m_s[m_i] == '\\') { text += m_s[m_i++]; if(m_i >= m_s.size()) return false; }
+      text += m_s[m_i++];
+    }
+    if(m_i >= m_s.size()) return false;
+    ++m_i;
+    if(out) *out = text;
+    return true;
+  }
+  bool number(double* out)
+  {
+    const char* begin = m_s.c_str() + m_i;
+    if(!(*begin == '-' || std::isdigit(static_cast<unsigned char>(*begin)))) return false;
+    char* end = nullptr;
+    const double x = std::strtod(begin, &end);
+    if(end == begin || !std::isfinite(x)) return false;
+    m_i += std::size_t(end - begin);
+    if(out) *out = x;
+    return true;
+  }
+  bool value(int depth)
+  {
+    skip();
+    if(m_i >= m_s.size() || depth > 64) return false;
+    const char c = m_s[m_i];
+    if(c == '{')
+    {
+      ++m_i;
+      skip();
+      if(m_i < m_s.size() && m_s[m_i] == '}') { ++m_i; return true; }
+      for(;;)
+      {
+        skip();
+        std::string key;
+        if(!string(&key)) return false;
+        skip();
+        if(m_i >= m_s.size() || m_s[m_i++] != ':') return false;
+        skip();
+        if(depth == 0)
+        {
+          keys.insert(key);
+          const std::size_t at = m_i;
+          double x;
+          if(number(&x)) numbers[key] = x;
+          m_i = at;
+        }
+        if(!value(depth + 1)) return false;
+        skip();
+        if(m_i >= m_s.size()) return false;
+        const char d = m_s[m_i++];
+        if(d == '}') return true;
+        if(d != ',') return false;
+      }
+    }
+    if(c == '[')
+    {
+      ++m_i;
+      skip();
+      if(m_i < m_s.size() && m_s[m_i] == ']') { ++m_i; return true; }
+      for(;;)
+      {
+        if(!value(depth + 1)) return false;
+        skip();
+        if(m_i >= m_s.size()) return false;
+        if(m_s[m_i] == ']') { ++m_i; return true; }
+        if(m_s[m_i++] != ',') return false;
+      }
+    }
+    if(c == '"') return string(nullptr);
+    if(literal("true") || literal("false") || literal("null")) return true;
+    return number(nullptr);
+  }
+  const std::string m_s;
+  std::size_t m_i = 0;
+};
+
+std::string read_file(const std::string& name)
+{
+  std::ifstream in(name);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+void write_points(const std::string& file, const std::vector<K::Point_3>& pts)
+{
+  std::ofstream out(file);
+  out.precision(17);
+  for(const auto& p : pts) out << p << '\n';
+}
+
+void test_json_checker()
+{
+  const int before = blended_shape_test::failures();
+  BS_CHECK(Json_checker("{\"a\": 1, \"b\": [1, 2], \"c\": {\"d\": \"x\"}}").valid(), "valid JSON rejected");
+  for(const char* bad : {"{\"a\": nan}", "{\"a\": 1,}", "{\"a\" 1}", "[1, 2", "{\"a\": 1} x", "{\"a\": inf}"})
+    BS_CHECK(!Json_checker(bad).valid(), "invalid JSON accepted: " << bad);
+  blended_shape_test::report("json_checker");
+  (void)before;
+}
+
+void test_bad_input(const Temp_dir& dir)
+{
+  const std::string json = dir / "out.json";
+  std::vector<K::Point_3> five;
+  for(int i = 0; i < 5; ++i) five.emplace_back(i, i * i, 1);
+  write_points(dir / "five.xyz", five);
+  std::ofstream(dir / "empty.xyz").close();
+  std::ofstream(dir / "garbage.xyz") << "1 2 three\n";
+  std::ofstream(dir / "garbage.off") << "OFF\n3 1 0\n0 0\n";
+  struct Case { std::string args; int code; };
+  const std::vector<Case> cases = {
+    {quote(dir / "missing.xyz"), 1},
+    {quote(dir / "empty.xyz"), 1},
+    {quote(dir / "five.xyz"), 1},
+    {quote(dir / "garbage.xyz"), 1},
+    {quote(dir / "garbage.off"), 1},
+    {quote(dir.path.string()), 1},                      // a directory
+    {quote(dir / "five.xyz") + " --bogus", 2},
+    {"", 2},                                            // no input
+    {quote(dir / "five.xyz") + " --max-iterations abc", 2},
+    {quote(dir / "five.xyz") + " --max-iterations 0", 2},
+    {quote(dir / "five.xyz") + " --seed -3", 2},
+    {quote(dir / "five.xyz") + " --mesh " + quote(dir / "m.stl"), 2},
+    {quote(dir / "five.xyz") + " --json", 2},           // missing value
+    {quote(dir / "a.xyz") + " " + quote(dir / "b.xyz"), 2}};
+  for(const Case& c : cases)
+  {
+    const std::size_t files = dir.number_of_files();
+    std::string err;
+    // every output requested first, so that the case's own flags come last
+    const int code = run(quote(tool) + " --json " + quote(json) + " --mesh " + quote(dir / "m.ply") +
+                           " --hierarchy " + quote(dir / "h.dot") + " --model " + quote(dir / "model.json") + " " +
+                           c.args,
+                         dir, &err);
+    BS_CHECK(code == c.code, "blended_fit " << c.args << ": exit " << code << " instead of " << c.code);
+    BS_CHECK(err.rfind("blended_fit: ", 0) == 0 && err.size() > 20, "no clear message: '" << err << "'");
+    BS_CHECK(dir.number_of_files() == files, "blended_fit " << c.args << " left a file behind");
+  }
+  blended_shape_test::report("blended_fit_bad_input");
+}
+
+void test_good_run(const Temp_dir& dir)
+{
+  std::mt19937_64 rng(4);
+  const auto model = BS::internal::random_superellipsoid<K>(rng);
+  write_points(dir / "cloud.xyz", BS::internal::synthetic_scan(model, 800, true, 0.002, rng));
+  std::string err, out;
+  const int code = run(quote(tool) + " " + quote(dir / "cloud.xyz") + " --mesh " + quote(dir / "m.ply") +
+                         " --hierarchy " + quote(dir / "h.dot") + " --model " + quote(dir / "model.json"),
+                       dir, &err, &out);
+  BS_CHECK(code == 0, "good run failed: " << err);
+  BS_CHECK(err.find("iteration") != std::string::npos && err.find("parts") != std::string::npos, "no progress shown");
+  Json_checker summary(out);
+  BS_CHECK(summary.valid(), "the summary is not valid JSON:\n" << out);
+  for(const char* key : {"points", "parameters", "iterations", "relative_rms", "rms_over_bbox_diagonal", "parts",
+                         "holes", "genus", "seconds", "model"})
+    BS_CHECK(summary.keys.count(key) == 1, "missing key " << key);
+  BS_CHECK(summary.numbers["points"] == 800 && summary.numbers["parameters"] == 12, "points / parameters");
+  BS_CHECK(summary.numbers["rms_over_bbox_diagonal"] < 0.01, "a poor fit of a clean superquadric");
+  Json_checker model_file(read_file(dir / "model.json"));
+  BS_CHECK(model_file.valid() && model_file.keys.count("components") && model_file.keys.count("hierarchy"),
+           "model file");
+  BS_CHECK(read_file(dir / "h.dot").find("digraph") != std::string::npos, "hierarchy file");
+  for(const char* mesh : {"m.ply", "m.off"})
+  {
+    if(std::string(mesh) == "m.off")
+      BS_CHECK(run(quote(tool) + " " + quote(dir / "cloud.xyz") + " --quiet --mesh " + quote(dir / mesh), dir) == 0,
+               "--mesh .off");
+    std::vector<K::Point_3> points;
+    std::vector<std::vector<std::size_t>> faces;
+    BS_CHECK(CGAL::IO::read_polygon_soup(dir / mesh, points, faces) && faces.size() > 100, "mesh " << mesh);
+  }
+  // --json FILE and --quiet: nothing on stdout or stderr, the file holds the summary.
+  BS_CHECK(run(quote(tool) + " " + quote(dir / "cloud.xyz") + " --quiet --json " + quote(dir / "s.json"), dir, &err,
+               &out) == 0 && out.empty() && err.empty(), "--quiet --json");
+  BS_CHECK(Json_checker(read_file(dir / "s.json")).valid(), "--json file");
+  BS_CHECK(run(quote(tool) + " --help", dir, nullptr, &out) == 0 && out.find("Usage") != std::string::npos, "--help");
+  blended_shape_test::report("blended_fit_good_run");
+}
+
+} // namespace
+
+int main()
+{
+  test_json_checker();
+  Temp_dir dir("blended_test_fit");
+  test_bad_input(dir);
+  test_good_run(dir);
+  blended_shape_test::report("test_blended_fit");
+  return blended_shape_test::exit_code();
+}
