@@ -7,6 +7,7 @@
 #include <CGAL/Blended_shape/Fit_metrics.h>
 #include <CGAL/Blended_shape/Superquadric_ellipsoid.h>
 #include <CGAL/Blended_shape/initialize_from_moments.h>
+#include <CGAL/Blended_shape/internal/point_range_types.h>
 #include <CGAL/Blended_shape/parameters.h>
 
 #include <CGAL/Kernel_traits.h>
@@ -179,14 +180,11 @@ auto fit_blended_shape(const PointRange& points, const NamedParameters& np = CGA
 {
   using CGAL::parameters::choose_parameter;
   using CGAL::parameters::get_parameter;
-  typedef typename CGAL::GetPointMap<PointRange, NamedParameters>::const_type Point_map;
-  typedef typename boost::property_traits<Point_map>::value_type Point_3;
-  typedef typename CGAL::Kernel_traits<Point_3>::Kernel Default_traits;
-  typedef typename CGAL::internal_np::Lookup_named_param_def<
-    CGAL::internal_np::geom_traits_t, NamedParameters, Default_traits>::type Geom_traits;
+  typedef internal::Point_range_types<PointRange, NamedParameters> Types;
+  typedef typename Types::Geom_traits Geom_traits;
   typedef CGAL::Surface_mesh<typename Geom_traits::Point_3> Mesh;
 
-  const Point_map point_map = choose_parameter<Point_map>(get_parameter(np, CGAL::internal_np::point_map));
+  const typename Types::Point_map point_map = Types::point_map(np);
   Fitting_settings s;
   s.maximum_iterations = choose_parameter(get_parameter(np, CGAL::internal_np::number_of_iterations), s.maximum_iterations);
   s.random_seed = choose_parameter(get_parameter(np, CGAL::internal_np::random_seed), s.random_seed);

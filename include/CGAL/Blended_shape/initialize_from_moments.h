@@ -4,6 +4,7 @@
 
 #include <CGAL/Blended_shape/check_points.h>
 #include <CGAL/Blended_shape/internal/quaternion.h>
+#include <CGAL/Blended_shape/internal/point_range_types.h>
 #include <CGAL/Blended_shape/parameters.h>
 
 #include <CGAL/Kernel_traits.h>
@@ -103,13 +104,11 @@ auto initialize_from_moments(const PointRange& points,
 {
   using CGAL::parameters::choose_parameter;
   using CGAL::parameters::get_parameter;
-  typedef typename CGAL::GetPointMap<PointRange, NamedParameters>::const_type Point_map;
-  typedef typename boost::property_traits<Point_map>::value_type Point_3;
-  typedef typename CGAL::Kernel_traits<Point_3>::Kernel Default_traits;
-  typedef typename CGAL::internal_np::Lookup_named_param_def<
-    CGAL::internal_np::geom_traits_t, NamedParameters, Default_traits>::type Geom_traits;
+  typedef internal::Point_range_types<PointRange, NamedParameters> Types;
+  typedef typename Types::Point_3 Point_3;
+  typedef typename Types::Geom_traits Geom_traits;
 
-  const Point_map point_map = choose_parameter<Point_map>(get_parameter(np, CGAL::internal_np::point_map));
+  const typename Types::Point_map point_map = Types::point_map(np);
   const bool refine = choose_parameter(get_parameter(np, internal_np::refine_axes), true);
   const double min_ratio = choose_parameter(get_parameter(np, internal_np::minimum_axis_ratio), 0.01);
   if(!(min_ratio > 0. && min_ratio <= 1.))
