@@ -25,7 +25,7 @@ struct Surface_sample
 \ingroup PkgBlendedShapeMetrics
 
 `count` points spread over the surface of `model` (anything with
-`number_of_charts()`, `chart_domain()`, `point()` and `normal()`), for tests
+`number_of_charts()`, `chart_domain()`, `canonical_chart_point()`, `point()` and `normal()`), for tests
 and benchmarks: triangles of the chart meshes are drawn with probability
 proportional to their area in space, a uniform point of the triangle is
 mapped back to its chart point, and the model is evaluated there. Where
@@ -75,7 +75,7 @@ sample_model_surface(const Model& model, std::size_t count, unsigned int seed, i
     double a = unit(rng), b = unit(rng);
     if(a + b > 1.) { a = 1. - a; b = 1. - b; }
     const Chart_point u = charts[fr.chart].chart_point(fr.face, {{1. - a - b, a, b}});
-    const Chart_point cu = model.shape().canonical_chart_point(u);
+    const Chart_point cu = model.canonical_chart_point(u);
     if(cu.chart != u.chart)
       continue; // the other chart's copy of this band is the one that counts
     Surface_sample<GT> s{model.point(u), model.normal(u), u};
