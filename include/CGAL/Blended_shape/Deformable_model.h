@@ -129,12 +129,6 @@ public:
     update_rotation();
   }
 
-  /// Moves `q` into the parameter bounds (the pose is unbounded).
-  void clamp_to_bounds(Eigen::VectorXd& q) const
-  {
-    for(std::size_t i = number_of_pose_parameters; i < number_of_parameters(); ++i)
-      q[Eigen::Index(i)] = (std::min)((std::max)(q[Eigen::Index(i)], parameter_lower_bound(i)), parameter_upper_bound(i));
-  }
   /// @}
 
   /// \name Charts (those of the shape)
