@@ -13,13 +13,13 @@
 
 #include <CGAL/Blended_shape/fit_blended_shape.h>
 #include <CGAL/Blended_shape/internal/compare_superquadrics.h>
+#include <CGAL/Blended_shape/internal/write_file_atomically.h>
 #include <CGAL/Blended_shape/internal/synthetic_scans.h>
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 
 #include <algorithm>
 #include <cstring>
-#include <fstream>
 #include <iomanip>
 #include <iostream>
 #include <random>
@@ -151,11 +151,13 @@ int main(int argc, char** argv)
   }
   if(!output.empty())
   {
-    std::ofstream out(output);
-    out << table.str();
-    if(!out)
+    try
     {
-      std::cerr << "fit_single_superquadric: cannot write '" << output << "'\n";
+      BS::internal::write_file_atomically(output, [&](std::ostream& out) { out << table.str(); });
+    }
+    catch(const std::exception& e)
+    {
+      std::cerr << "fit_single_superquadric: " << e.what() << '\n';
       return 1;
     }
   }

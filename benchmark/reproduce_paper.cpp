@@ -13,13 +13,13 @@
 #include <CGAL/Blended_shape/Range_scan_simulator.h>
 #include <CGAL/Blended_shape/fit_blended_shape.h>
 #include <CGAL/Blended_shape/internal/synthetic_scans.h>
+#include <CGAL/Blended_shape/internal/write_file_atomically.h>
 #include <CGAL/Blended_shape/read_points.h>
 #include <CGAL/Blended_shape/read_triangle_mesh.h>
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 
 #include <cstring>
-#include <fstream>
 #include <iomanip>
 #include <iostream>
 #include <optional>
@@ -173,11 +173,13 @@ int main(int argc, char** argv)
   md << "\nOurs: one superquadric (parts 1, holes 0, genus 0): part splitting and hole evolution are not "
         "implemented yet, so the rows that need them show what a single superquadric achieves.\n";
   auto write = [](const std::string& file, const std::string& text) {
-    std::ofstream out(file);
-    out << text;
-    if(!out)
+    try
     {
-      std::cerr << "reproduce_paper: cannot write '" << file << "'\n";
+      BS::internal::write_file_atomically(file, [&](std::ostream& out) { out << text; });
+    }
+    catch(const std::exception& e)
+    {
+      std::cerr << "reproduce_paper: " << e.what() << '\n';
       return false;
     }
     return true;
