@@ -3,7 +3,8 @@
 // the domain switch that moves no surface point while the hole is closed,
 // the pinch point, the exact parameter Jacobian, the tube's periodic seam,
 // normals and chart orientation, the circles where the hole is glued to the
-// base, and the errors, with both supported kernels.
+// base, the tube chart (Chart_kind::Tube: its chart mesh, random chart points,
+// the generic checks on it), and the errors, with both supported kernels.
 #include "test_util.h"
 
 #include <CGAL/Blended_shape/Chart_mesh.h>
@@ -12,11 +13,16 @@
 #include <CGAL/Blended_shape/check_primitive.h>
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Polygon_mesh_processing/border.h>
 #include <CGAL/Simple_cartesian.h>
+#include <CGAL/boost/graph/helpers.h>
 
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <iterator>
+#include <map>
+#include <set>
 #include <random>
 #include <sstream>
 #include <stdexcept>
@@ -88,20 +94,6 @@ std::vector<Params> parameter_sets(std::mt19937_64& rng, bool closed, double e_l
   return sets;
 }
 
-// A uniform chart point of chart c of the hole's current domain (the tube
-// is a strip that random_chart_point() does not know yet).
-template <class Hole>
-BS::Chart_point random_hole_point(const Hole& h, std::size_t c, std::mt19937_64& rng)
-{
-  const BS::Hole_chart_domain d = h.hole_chart_domain(c);
-  if(d.domain == BS::Hole_domain::Tube)
-  {
-    std::uniform_real_distribution<double> unit(0., 1.);
-    return BS::Chart_point(c, d.period * unit(rng), d.y_min + (d.y_max - d.y_min) * unit(rng));
-  }
-  return BS::random_chart_point(h, c, rng);
-}
-
 // The seam theta = 0, the axes, the middle circle and both boundary circles.
 std::vector<BS::Chart_point> tube_special_points()
 {
@@ -134,7 +126,7 @@ std::vector<BS::Chart_point> test_points(const Hole& h, std::size_t per_chart, s
     (h.domain() == BS::Hole_domain::Tube) ? tube_special_points() : disk_special_points();
   for(std::size_t c = 0; c < h.number_of_charts(); ++c)
     for(std::size_t i = 0; i < per_chart; ++i)
-      pts.push_back(random_hole_point(h, c, rng));
+      pts.push_back(BS::random_chart_point(h, c, rng));
   return pts;
 }
 
@@ -198,7 +190,7 @@ void test_domain_switch(std::mt19937_64& rng)
       for(int j = 0; j <= 16; ++j)
         grid.emplace_back(0, two_pi * i / 48., -1. + j / 8.);
     for(int i = 0; i < 2000; ++i)
-      grid.push_back(random_hole_point(tube, 0, rng));
+      grid.push_back(BS::random_chart_point(tube, 0, rng));
     const double size = shape_size(tube, grid);
     double worst = 0., worst_normal = 0.;
     for(const BS::Chart_point& t : grid)
@@ -359,7 +351,7 @@ void test_chart_consistency(std::mt19937_64& rng)
              describe(disks) << ": the disks overlap: " << r.pairs_checked << " pairs");
     for(int i = 0; i < 200; ++i)
     {
-      const BS::Chart_point p = random_hole_point(disks, std::size_t(i % 2), rng);
+      const BS::Chart_point p = BS::random_chart_point(disks, std::size_t(i % 2), rng);
       BS::Chart_point o;
       BS_CHECK(!disks.to_chart(p, 1 - p.chart, o) && !disks.to_chart(p, 2, o), "to_chart to another disk");
       BS_CHECK(disks.to_chart(p, p.chart, o) && o.chart == p.chart && o.x == p.x && o.y == p.y, "to_chart to itself");
@@ -376,7 +368,7 @@ void test_chart_consistency(std::mt19937_64& rng)
     // of e = 2, a genuine crease) -- a property of the toroid's angles.
     std::vector<BS::Chart_point> pts;
     for(int i = 0; i < 2000; ++i)
-      pts.push_back(random_hole_point(tube, 0, rng));
+      pts.push_back(BS::random_chart_point(tube, 0, rng));
     const double size = shape_size(tube, pts);
     double dist = 0., ndev = 0., round_trip = 0.;
     std::size_t pairs = 0;
@@ -386,7 +378,7 @@ void test_chart_consistency(std::mt19937_64& rng)
       BS_CHECK(!tube.to_chart(p, 1, o), "the tube has one chart");
       const BS::Chart_point cp = tube.canonical_chart_point(p);
       BS_CHECK(cp.chart == 0 && cp.x >= 0. && cp.x < two_pi && cp.y == p.y &&
-                 tube.hole_chart_domain(0).contains(cp.x, cp.y), "canonical point out of the domain");
+                 tube.chart_domain(0).contains(cp.x, cp.y), "canonical point out of the domain");
       for(int k : {-2, -1, 1, 2, 3})
       {
         const BS::Chart_point s(0, p.x + k * two_pi, p.y);
@@ -421,7 +413,7 @@ void check_normals(const Hole& h, std::mt19937_64& rng, bool of_revolution)
   for(std::size_t c = 0; c < h.number_of_charts(); ++c)
     for(int i = 0; i < 800; ++i)
     {
-      const BS::Chart_point u = random_hole_point(h, c, rng);
+      const BS::Chart_point u = BS::random_chart_point(h, c, rng);
       ++total;
       const Vector_3 n = h.normal(u);
       BS_CHECK(std::abs(CGAL::to_double(n.squared_length()) - 1.) < 1e-12, "normal not unit");
@@ -577,7 +569,7 @@ void test_boundary_circles(std::mt19937_64& rng)
   const Hole h(1.3, 0.7, 1.1, 1.4, 1.8, 1., 1., BS::Hole_domain::Tube);
   for(int i = 0; i < 200; ++i)
   {
-    const BS::Chart_point t = random_hole_point(h, 0, rng);
+    const BS::Chart_point t = BS::random_chart_point(h, 0, rng);
     const double u = (1. + t.y / 2.) * M_PI, v = t.x;
     const typename K::Point_3 e(1.3 * (1.4 + std::cos(u)) * std::cos(v), 0.7 * (1.8 + std::cos(u)) * std::sin(v),
                                 1.1 * std::sin(u));
@@ -586,7 +578,282 @@ void test_boundary_circles(std::mt19937_64& rng)
 }
 
 // ---------------------------------------------------------------------------
-// (7) Errors, the chart descriptions, and the parameter table.
+// (7) The tube chart (Chart_kind::Tube): its chart mesh, random chart points,
+// the chart-consistency check and the Jacobian check through them.
+
+// The structure of a tube chart mesh of the domain [0, 2 pi) x [y_min, y_max]
+// at resolution n: valid, closed in x, an annulus whose two boundary loops
+// are the rows y = y_min and y = y_max exactly, rows at most 1/n apart
+// (with a row at y = 0 when it is inside), counterclockwise, near-uniform
+// chart triangles. Returns the rows.
+template <class K>
+std::vector<double> check_tube_mesh_structure(const BS::Chart_mesh<K>& cm, int n, const std::string& what)
+{
+  typedef typename BS::Chart_mesh<K>::Mesh Mesh;
+  const Mesh& m = cm.mesh();
+  const BS::Chart_domain& d = cm.domain();
+  BS_CHECK(d.kind == BS::Chart_kind::Tube, what << ": not a tube mesh");
+  BS_CHECK(m.is_valid(false) && CGAL::is_triangle_mesh(m), what << ": invalid tube mesh");
+  const int chi = int(m.number_of_vertices()) - int(m.number_of_edges()) + int(m.number_of_faces());
+  BS_CHECK(chi == 0, what << ": Euler characteristic " << chi);
+  // rows: every vertex on a row of 4n vertices at x = 2 pi i / 4n
+  std::map<double, std::set<double>> rows;
+  for(auto v : m.vertices())
+  {
+    const BS::Chart_point u = cm.chart_point(v);
+    BS_CHECK(u.chart == cm.chart_index() && d.contains(u.x, u.y) && u.x >= 0. && u.x < two_pi,
+             what << ": vertex (" << u.x << ", " << u.y << ") out of the domain");
+    rows[u.y].insert(u.x);
+  }
+  std::vector<double> ys;
+  for(const auto& r : rows)
+  {
+    ys.push_back(r.first);
+    BS_CHECK(r.second.size() == std::size_t(4 * n), what << ": row y = " << r.first << " has " << r.second.size()
+                                                          << " vertices instead of " << 4 * n);
+    for(double x : r.second)
+    {
+      const double i = x * (4 * n) / two_pi;
+      BS_CHECK(std::abs(i - std::round(i)) < 1e-9, what << ": column x = " << x);
+    }
+  }
+  BS_CHECK(ys.size() >= 2 && ys.front() == d.y_min && ys.back() == d.y_max,
+           what << ": no row exactly at y_min = " << d.y_min << " and y_max = " << d.y_max);
+  if(d.y_min < 0. && 0. < d.y_max)
+    BS_CHECK(rows.count(0.) == 1, what << ": no row at y = 0");
+  for(std::size_t j = 1; j < ys.size(); ++j)
+    BS_CHECK(ys[j] - ys[j - 1] <= 1. / n + 1e-12, what << ": rows " << ys[j - 1] << " and " << ys[j] << " too far apart");
+  BS_CHECK(m.number_of_faces() == 2 * std::size_t(4 * n) * (ys.size() - 1), what << ": " << m.number_of_faces() << " faces");
+  // two boundary loops, y = y_min and y = y_max exactly, each a whole row;
+  // no other border: the mesh is closed across the seam in x
+  std::vector<typename Mesh::Halfedge_index> cycles;
+  CGAL::Polygon_mesh_processing::extract_boundary_cycles(m, std::back_inserter(cycles));
+  BS_CHECK(cycles.size() == 2, what << ": " << cycles.size() << " boundary loops instead of 2");
+  std::set<double> loop_rows;
+  std::size_t border_halfedges = 0;
+  for(auto h0 : cycles)
+  {
+    std::set<double> ys_of_loop;
+    std::size_t count = 0;
+    for(auto h : CGAL::halfedges_around_face(h0, m))
+    {
+      ++count;
+      ys_of_loop.insert(cm.chart_point(m.target(h)).y);
+    }
+    border_halfedges += count;
+    BS_CHECK(ys_of_loop.size() == 1 && count == std::size_t(4 * n),
+             what << ": a boundary loop of " << count << " edges not on one row");
+    if(ys_of_loop.size() == 1)
+      loop_rows.insert(*ys_of_loop.begin());
+  }
+  BS_CHECK(loop_rows.size() == 2 && loop_rows.count(d.y_min) == 1 && loop_rows.count(d.y_max) == 1,
+           what << ": the boundary loops are not the rows y_min and y_max");
+  std::size_t all_border = 0;
+  for(auto h : m.halfedges())
+    if(m.is_border(h))
+      ++all_border;
+  BS_CHECK(all_border == border_halfedges && all_border == std::size_t(8 * n), what << ": " << all_border
+                                                                                  << " border halfedges: not closed in x");
+  // counterclockwise, near-uniform chart triangles, none wider than half a period
+  double min_area = HUGE_VAL, max_area = 0.;
+  for(auto f : m.faces())
+  {
+    const auto c = cm.face_chart_coordinates(f);
+    const double area = 0.5 * ((c[1][0] - c[0][0]) * (c[2][1] - c[0][1]) - (c[2][0] - c[0][0]) * (c[1][1] - c[0][1]));
+    min_area = (std::min)(min_area, area);
+    max_area = (std::max)(max_area, area);
+    for(int k = 1; k < 3; ++k)
+      BS_CHECK(std::abs(c[k][0] - c[0][0]) <= two_pi / (4 * n) + 1e-12 && std::abs(c[k][1] - c[0][1]) <= 1. / n + 1e-12,
+               what << ": a face is not unwrapped to a small triangle");
+  }
+  BS_CHECK(min_area > 0., what << ": a chart triangle is not counterclockwise (area " << min_area << ")");
+  BS_CHECK(max_area < 4. * min_area, what << ": chart triangles far from uniform: " << max_area / min_area);
+  return ys;
+}
+
+template <class K>
+void test_tube_chart_mesh(std::mt19937_64& rng)
+{
+  typedef BS::Hole_component<K> Hole;
+  typedef typename K::Point_3 Point_3;
+  std::uniform_real_distribution<double> unit(0., 1.);
+
+  // The hole's tube chart: [-1, 1], rows y = -1, 0, 1 exactly, 1/n apart.
+  Hole tube(1., 1., 1., 1.5, 1.5, 1., 1., BS::Hole_domain::Tube);
+  const BS::Chart_domain td = tube.chart_domain(0);
+  double previous_error = 0.;
+  for(int n : {1, 2, 3, 8, 16})
+  {
+    const auto meshes = BS::make_chart_meshes(tube, n);
+    BS_CHECK(meshes.size() == 1, "one tube chart mesh");
+    if(meshes.size() != 1)
+      return;
+    const BS::Chart_mesh<K>& cm = meshes.front();
+    std::ostringstream what;
+    what << "hole tube mesh, resolution " << n;
+    const std::vector<double> ys = check_tube_mesh_structure(cm, n, what.str());
+    BS_CHECK(ys.size() == std::size_t(2 * n + 1), what.str() << ": " << ys.size() << " rows instead of " << 2 * n + 1);
+    for(std::size_t j = 0; j < ys.size(); ++j)
+      BS_CHECK(std::abs(ys[j] - (-1. + double(j) / n)) < 1e-15, what.str() << ": row " << j << " at y = " << ys[j]);
+    // The rows are the rings of the two disks of the closed hole at the same
+    // resolution (their images on the tube), and the triangles have the
+    // disks' mean chart area: twice as many, the strip's chart area 4 pi
+    // being twice the disks' 2 pi.
+    const Hole closed(1., 1., 1., 1., 1., 1., 1.);
+    std::size_t disk_faces = 0;
+    for(const auto& dm : BS::make_chart_meshes(closed, n))
+    {
+      disk_faces += dm.mesh().number_of_faces();
+      for(auto v : dm.mesh().vertices())
+      {
+        const double y = Hole::to_domain(dm.chart_point(v), BS::Hole_domain::Tube).y;
+        BS_CHECK(std::any_of(ys.begin(), ys.end(), [&](double r) { return std::abs(r - y) < 1e-14; }),
+                 what.str() << ": the disk ring r = " << y << " is not a row of the tube");
+      }
+    }
+    BS_CHECK(cm.mesh().number_of_faces() == 2 * disk_faces,
+             what.str() << ": " << cm.mesh().number_of_faces() << " faces, the disks " << disk_faces);
+
+    // Placed by the open hole: positions, face normals agree with normal(),
+    // and chart points of the faces (across the seam too) map onto the faces.
+    const auto& m = cm.mesh();
+    double h_max = 0.;
+    for(auto e : m.edges())
+      h_max = (std::max)(h_max, distance(m.point(m.source(m.halfedge(e))), m.point(m.target(m.halfedge(e)))));
+    int agree = 0, total = 0, seam_faces = 0, seam_points = 0;
+    double worst = 0., worst_plane = 0.;
+    for(auto v : m.vertices())
+      BS_CHECK(m.point(v) == tube.point(cm.chart_point(v)), what.str() << ": vertex position");
+    for(auto f : m.faces())
+    {
+      const auto v = cm.face_vertices(f);
+      const Point_3 &p0 = m.point(v[0]), &p1 = m.point(v[1]), &p2 = m.point(v[2]);
+      const auto n3 = CGAL::normal(p0, p1, p2);
+      ++total;
+      if(n3 * tube.normal(cm.chart_point(f, {{1. / 3., 1. / 3., 1. / 3.}})) > 0.)
+        ++agree;
+      double xs[3] = {cm.chart_point(v[0]).x, cm.chart_point(v[1]).x, cm.chart_point(v[2]).x};
+      const bool seam = (std::max)({xs[0], xs[1], xs[2]}) - (std::min)({xs[0], xs[1], xs[2]}) > M_PI;
+      seam_faces += seam;
+      const double unit_n = length<K>(n3);
+      for(int s = 0; s < (seam ? 20 : 2); ++s)
+      {
+        double a = unit(rng), b = unit(rng);
+        if(a + b > 1.) { a = 1. - a; b = 1. - b; }
+        const std::array<double, 3> bc = {{1. - a - b, a, b}};
+        const BS::Chart_point u = cm.chart_point(f, bc);
+        BS_CHECK(u.chart == 0 && td.contains(u.x, u.y), what.str() << ": chart point (" << u.x << ", " << u.y
+                                                                   << ") of a face out of the domain");
+        const BS::Chart_point cu = tube.canonical_chart_point(u);
+        BS_CHECK(cu.x >= 0. && cu.x < two_pi && td.contains(cu.x, cu.y), "canonical chart point of a face point");
+        const Point_3 s3 = tube.point(u);
+        const Point_3 lin(bc[0] * p0.x() + bc[1] * p1.x() + bc[2] * p2.x(),
+                          bc[0] * p0.y() + bc[1] * p1.y() + bc[2] * p2.y(),
+                          bc[0] * p0.z() + bc[1] * p1.z() + bc[2] * p2.z());
+        const double e = distance(s3, lin);
+        const double plane = std::abs(CGAL::to_double((s3 - p0) * n3)) / unit_n;
+        worst = (std::max)(worst, e);
+        worst_plane = (std::max)(worst_plane, plane);
+        seam_points += seam;
+      }
+    }
+    BS_CHECK(seam_faces == 2 * (2 * n) && seam_points == 20 * seam_faces, what.str() << ": " << seam_faces << " seam faces");
+    BS_CHECK(agree == total, what.str() << ": " << agree << " of " << total << " faces agree with the hole's normal");
+    // O(h^2): the curvature of this torus is at most 2 (inner radius 0.5)
+    BS_CHECK(worst <= h_max * h_max && worst_plane <= h_max * h_max,
+             what.str() << ": face points off the surface by " << worst << " (plane " << worst_plane << "), h = " << h_max);
+    if(n == 16)
+      BS_CHECK(worst < previous_error / 3., what.str() << ": error " << worst << " not O(h^2) after " << previous_error);
+    previous_error = worst;
+  }
+
+  // The closed hole on the tube: its middle row collapses to the pinch point.
+  {
+    const Hole pinched(1.2, 0.9, 1.4, 1., 1., 1., 1., BS::Hole_domain::Tube);
+    const auto meshes = BS::make_chart_meshes(pinched, 4);
+    check_tube_mesh_structure(meshes.front(), 4, "closed hole tube mesh");
+    const auto& m = meshes.front().mesh();
+    const Point_3 pinch = pinched.point(BS::Chart_point(0, 0., 0.));
+    int on_pinch = 0;
+    for(auto v : m.vertices())
+      on_pinch += (meshes.front().chart_point(v).y == 0. && m.point(v) == pinch);
+    BS_CHECK(on_pinch == 16, "the middle row of the closed hole is the pinch point: " << on_pinch);
+  }
+
+  // Other y ranges, through Chart_mesh directly.
+  {
+    const BS::Chart_mesh<K> a(3, BS::Chart_domain::tube(-0.35, 1.), 4);
+    BS_CHECK(a.chart_index() == 3, "chart index");
+    const std::vector<double> ya = check_tube_mesh_structure(a, 4, "tube [-0.35, 1]");
+    BS_CHECK(ya.size() == 7, "tube [-0.35, 1] rows: " << ya.size()); // -0.35, -0.175, 0, 0.25, ..., 1
+    const BS::Chart_mesh<K> b(0, BS::Chart_domain::tube(0.2, 0.9), 5);
+    const std::vector<double> yb = check_tube_mesh_structure(b, 5, "tube [0.2, 0.9]");
+    BS_CHECK(yb.size() == 5 && std::count(yb.begin(), yb.end(), 0.) == 0, "tube [0.2, 0.9] rows: " << yb.size());
+    const BS::Chart_mesh<K> c(0, BS::Chart_domain::tube(-2., 0.), 1);
+    const std::vector<double> yc = check_tube_mesh_structure(c, 1, "tube [-2, 0]");
+    BS_CHECK(yc.size() == 3, "tube [-2, 0] rows: " << yc.size());
+    // copies keep their chart coordinates
+    BS::Chart_mesh<K> copy = a;
+    check_tube_mesh_structure(copy, 4, "copy of a tube mesh");
+    int thrown = 0;
+    for(const BS::Chart_domain& bad : {BS::Chart_domain::tube(1., -1.), BS::Chart_domain::tube(0.5, 0.5),
+                                       BS::Chart_domain::tube(0., HUGE_VAL), BS::Chart_domain::tube(std::nan(""), 1.)})
+    {
+      try { BS::Chart_mesh<K>(0, bad, 4); } catch(const std::invalid_argument&) { ++thrown; }
+    }
+    BS_CHECK(thrown == 4, "empty or infinite tube ranges accepted: " << 4 - thrown);
+  }
+
+  // random_chart_point on the tube: uniform over the whole strip.
+  {
+    double y_lo = HUGE_VAL, y_hi = -HUGE_VAL, x_lo = HUGE_VAL, x_hi = -HUGE_VAL, x_sum = 0., y_sum = 0.;
+    const int N = 20000;
+    int below = 0;
+    for(int i = 0; i < N; ++i)
+    {
+      const BS::Chart_point p = BS::random_chart_point(tube, 0, rng);
+      BS_CHECK(p.chart == 0 && p.x >= 0. && p.x < two_pi && p.y >= -1. && p.y <= 1. && td.contains(p.x, p.y),
+               "random tube point (" << p.x << ", " << p.y << ")");
+      x_lo = (std::min)(x_lo, p.x); x_hi = (std::max)(x_hi, p.x);
+      y_lo = (std::min)(y_lo, p.y); y_hi = (std::max)(y_hi, p.y);
+      x_sum += p.x; y_sum += p.y;
+      below += (p.y < -0.5);
+    }
+    BS_CHECK(x_lo < 0.01 && x_hi > two_pi - 0.01 && y_lo < -0.99 && y_hi > 0.99 &&
+               std::abs(x_sum / N - M_PI) < 0.05 && std::abs(y_sum / N) < 0.02 && std::abs(below - N / 4) < N / 40,
+             "random tube points not uniform: x in [" << x_lo << ", " << x_hi << "], y in [" << y_lo << ", " << y_hi
+                                                      << "], means " << x_sum / N << ", " << y_sum / N);
+  }
+
+  // check_chart_consistency on the tube: one shift in x per point, none in y.
+  for(const Params& q : parameter_sets(rng, false))
+  {
+    const Hole h = make_hole<K>(q, BS::Hole_domain::Tube);
+    const BS::Chart_consistency_report r = BS::check_chart_consistency(h, 1500, 11);
+    BS_CHECK(r.points_sampled == 1500 && r.pairs_checked == 1500,
+             describe(h) << ": " << r.pairs_checked << " pairs checked (the y of a tube is not periodic)");
+    BS_CHECK(r.max_relative_distance < 1e-12 && r.max_round_trip_error == 0. && r.max_normal_deviation < 1e-9,
+             describe(h) << ": chart consistency " << r.max_relative_distance << " at (" << r.worst_point.x << ", "
+                         << r.worst_point.y << "), normals " << r.max_normal_deviation);
+    // the Jacobian check through random_chart_point alone
+    std::vector<BS::Chart_point> pts;
+    for(int i = 0; i < 1000; ++i)
+      pts.push_back(BS::random_chart_point(h, 0, rng));
+    check_hole_jacobian(h, pts);
+  }
+  // and the checker still catches a wrong column there
+  Wrong_jacobian_hole<K> wrong(1., 2., 1.5, 1.6, 1.2, 0.7, 0.8, BS::Hole_domain::Tube);
+  wrong.column = BS::Hole_component<K>::A3;
+  std::vector<BS::Chart_point> pts;
+  for(int i = 0; i < 1000; ++i)
+    pts.push_back(BS::random_chart_point(wrong, 0, rng));
+  const BS::Jacobian_check_report r = BS::check_jacobian(wrong, pts);
+  BS_CHECK(r.max_relative_error > 1e-5 && r.worst_parameter == BS::Hole_component<K>::A3,
+           "the Jacobian checker missed a wrong a3 column on random tube points: " << r.max_relative_error);
+}
+
+// ---------------------------------------------------------------------------
+// (8) Errors, the chart descriptions, and the parameter table.
 
 template <class K>
 void test_errors_and_domains()
@@ -613,19 +880,29 @@ void test_errors_and_domains()
   q[Hole::E2] = 3.;
   try { h.set_parameters(q); } catch(const std::invalid_argument&) {}
   BS_CHECK(h.parameters()[Hole::E2] == 1. && h.parameters()[Hole::A4] == 1.5, "parameters changed by a failed set");
-  // the tube has no Chart_domain yet: chart_domain() says so instead of lying
-  bool refused = false;
-  try { h.chart_domain(0); } catch(const std::logic_error&) { refused = true; }
-  BS_CHECK(refused, "chart_domain() of the tube");
-  const BS::Hole_chart_domain td = h.hole_chart_domain(0);
-  BS_CHECK(td.domain == BS::Hole_domain::Tube && td.period == two_pi && td.y_min == -1. && td.y_max == 1. &&
-             td.contains(-7., 1.) && !td.contains(0., 1.01) && !td.contains(HUGE_VAL, 0.), "tube domain");
+  // the tube chart: x periodic with period 2 pi, y in [-1, 1]
+  const BS::Chart_domain td = h.chart_domain(0);
+  BS_CHECK(td.kind == BS::Chart_kind::Tube && td.period() == two_pi && td.x_period() == two_pi &&
+             td.y_period() == 0. && td.y_min == -1. && td.y_max == 1. && td.contains(-7., 1.) &&
+             td.contains(20., -1.) && !td.contains(0., 1.01) && !td.contains(0., -1.01) &&
+             !td.contains(HUGE_VAL, 0.) && !td.contains(0., std::nan("")), "tube domain");
   const Hole d;
   BS_CHECK(d.domain() == BS::Hole_domain::Two_disks && d.hole_is_closed(), "default: closed hole on two disks");
-  BS_CHECK(d.chart_domain(1).kind == BS::Chart_kind::Disk && d.chart_domain(1).radius == 1., "disk chart domain");
-  const BS::Hole_chart_domain dd = d.hole_chart_domain(0);
-  BS_CHECK(dd.domain == BS::Hole_domain::Two_disks && dd.radius == 1. && dd.period == 0. && dd.contains(0.6, -0.8) &&
-             !dd.contains(0.8, 0.8), "disk domain");
+  for(std::size_t c : {0u, 1u})
+  {
+    const BS::Chart_domain dd = d.chart_domain(c);
+    BS_CHECK(dd.kind == BS::Chart_kind::Disk && dd.radius == 1. && dd.period() == 0. && dd.x_period() == 0. &&
+               dd.y_period() == 0. && dd.contains(0.6, -0.8) && !dd.contains(0.8, 0.8), "disk chart domain");
+  }
+  // the factories of the three kinds
+  const BS::Chart_domain torus = BS::Chart_domain::torus(), disk = BS::Chart_domain::disk(1.2),
+                         strip = BS::Chart_domain::tube(-0.5, 2.);
+  BS_CHECK(torus.kind == BS::Chart_kind::Torus && torus.x_period() == two_pi && torus.y_period() == two_pi &&
+             torus.contains(-9., 17.) && !torus.contains(0., HUGE_VAL), "torus domain");
+  BS_CHECK(disk.kind == BS::Chart_kind::Disk && disk.radius == 1.2 && disk.y_min == -1.2 && disk.y_max == 1.2 &&
+             disk.contains(0., 1.2) && !disk.contains(1., 1.), "disk domain");
+  BS_CHECK(strip.kind == BS::Chart_kind::Tube && strip.y_min == -0.5 && strip.y_max == 2. && strip.contains(100., 2.) &&
+             !strip.contains(0., -0.6), "tube(-0.5, 2)");
   thrown = 0;
   try { Hole::to_domain(BS::Chart_point(2, 0., 0.), BS::Hole_domain::Tube); } catch(const std::invalid_argument&) { ++thrown; }
   try { Hole::to_domain(BS::Chart_point(1, 0., 0.), BS::Hole_domain::Two_disks); } catch(const std::invalid_argument&) { ++thrown; }
@@ -654,6 +931,7 @@ void run_all(const char* kernel)
   test_chart_consistency<K>(rng);
   test_normals<K>(rng);
   test_boundary_circles<K>(rng);
+  test_tube_chart_mesh<K>(rng);
   test_errors_and_domains<K>();
   std::cout << "hole component with " << kernel
             << (blended_shape_test::failures() == before ? ": SUCCESS" : ": FAILED") << std::endl;

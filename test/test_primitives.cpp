@@ -1,10 +1,12 @@
 // SPDX-License-Identifier: LGPL-3.0-or-later
-// Superquadric primitives, their charts and chart meshes, the generic
-// checkers, quaternion derivatives and the moment initialization, with both
-// supported kernels.
+// Superquadric primitives, their charts and chart meshes, their parameter
+// and chart Jacobians, the generic checkers, quaternion derivatives and the
+// moment initialization, with both supported kernels.
 #include "test_util.h"
 
 #include <CGAL/Blended_shape/Chart_mesh.h>
+#include <CGAL/Blended_shape/Deformable_model.h>
+#include <CGAL/Blended_shape/Hole_component.h>
 #include <CGAL/Blended_shape/Superquadric_ellipsoid.h>
 #include <CGAL/Blended_shape/Superquadric_toroid.h>
 #include <CGAL/Blended_shape/check_primitive.h>
@@ -89,6 +91,214 @@ struct Wrong_jacobian_ellipsoid : BS::Superquadric_ellipsoid<K>
   }
 };
 
+// Chart Jacobians (point_and_chart_jacobian()) against finite differences.
+//
+// The accuracy check (relative error < 1e-6, step 1e-5) excludes the chart
+// points within kChartMargin (in chart coordinates) of the loci where a signed
+// power meets a zero of its cosine or sine: there the map is not
+// differentiable for exponents other than 1 (for exponents below 1 the
+// derivative is unbounded), and nearby the central differences themselves are
+// off by about (step / distance)^2 |(e - 1)(e - 2)| / 6, under 1e-8 at a
+// distance of 0.05. The loci are the chart axes x = 0 and y = 0 (longitude a
+// multiple of pi/2) and the equator rho = 1 for the ellipsoid, which also keeps
+// 0.05 from the pole; the lines where u or v is a multiple of pi/2 for the
+// toroid and the hole's tube (|cos|, |sin| >= 0.05 there); the chart axes, the
+// centre and the rim for the hole's disks. Every point, on those loci too (the
+// special points: poles, axes, equator, rims, pinch, centres), is checked for
+// NaN and infinity.
+constexpr double kChartMargin = 0.05;
+
+bool away_from_zero(double c) { return std::abs(c) >= kChartMargin; }
+
+bool ellipsoid_smooth_at(const BS::Chart_point& p)
+{
+  return away_from_zero(p.x) && away_from_zero(p.y) && away_from_zero(std::hypot(p.x, p.y) - 1.);
+}
+
+// Toroid chart point (x, y) = (v, u).
+bool toroid_smooth_at(const BS::Chart_point& p)
+{
+  return away_from_zero(std::cos(p.x)) && away_from_zero(std::sin(p.x)) && away_from_zero(std::cos(p.y)) &&
+         away_from_zero(std::sin(p.y));
+}
+
+// n random chart points of each chart, kept where `smooth(p)` holds.
+template <class Primitive, class Smooth>
+std::vector<BS::Chart_point> smooth_points(const Primitive& p, std::size_t per_chart, std::mt19937_64& rng,
+                                           const Smooth& smooth)
+{
+  std::vector<BS::Chart_point> pts;
+  for(std::size_t c = 0; c < p.number_of_charts(); ++c)
+    for(std::size_t i = 0; i < per_chart;)
+    {
+      const BS::Chart_point u = BS::random_chart_point(p, c, rng);
+      if(smooth(u))
+      {
+        pts.push_back(u);
+        ++i;
+      }
+    }
+  return pts;
+}
+
+// `smooth`: the accuracy check; `anywhere`: finiteness only.
+template <class Primitive>
+BS::Chart_jacobian_check_report check_chart_jacobians(const Primitive& p, const std::vector<BS::Chart_point>& smooth,
+                                                      const std::vector<BS::Chart_point>& anywhere,
+                                                      const std::string& label)
+{
+  const BS::Chart_jacobian_check_report r = BS::check_chart_jacobian(p, smooth);
+  std::ostringstream where;
+  where << label << " q = " << p.parameters().transpose() << ": worst column " << r.worst_column << " at chart "
+        << r.worst_point.chart << " (" << r.worst_point.x << ", " << r.worst_point.y << "), error "
+        << r.max_relative_error;
+  BS_CHECK(r.points_checked == smooth.size() && r.points_checked >= 1000, where.str());
+  BS_CHECK(r.skipped_columns == 0, where.str() << ", skipped columns " << r.skipped_columns);
+  BS_CHECK(!r.has_non_finite, where.str());
+  BS_CHECK(r.max_relative_error < 1e-6, where.str());
+  const BS::Chart_jacobian_check_report all = BS::check_chart_jacobian(p, anywhere);
+  BS_CHECK(!all.has_non_finite && all.points_checked == anywhere.size(),
+           label << " q = " << p.parameters().transpose() << ": NaN or infinity in the chart Jacobian");
+  return r;
+}
+
+template <class K>
+void check_ellipsoid_chart_jacobian(const BS::Superquadric_ellipsoid<K>& ell, std::mt19937_64& rng)
+{
+  std::vector<BS::Chart_point> smooth =
+    smooth_points(ell, 1000, rng, ellipsoid_smooth_at);
+  // On the rim of both charts, away from the axes: one-sided differences.
+  const double rim = 1. + ell.chart_margin();
+  for(std::size_t c = 0; c < 2; ++c)
+    for(double a : {0.5, 2., 2.5, 4., 5.5})
+      smooth.emplace_back(c, rim * std::cos(a), rim * std::sin(a));
+  const auto r = check_chart_jacobians(ell, smooth, test_points(ell, 200, rng, ellipsoid_special_points(ell.chart_margin())),
+                                       "ellipsoid chart Jacobian");
+  BS_CHECK(r.one_sided_columns >= 20, "one-sided differences on the rim: " << r.one_sided_columns);
+}
+
+template <class K>
+void check_toroid_chart_jacobian(const BS::Superquadric_toroid<K>& tor, std::mt19937_64& rng, const std::string& label)
+{
+  check_chart_jacobians(tor, smooth_points(tor, 1000, rng, toroid_smooth_at),
+                        test_points(tor, 200, rng, toroid_special_points()), label);
+}
+
+// Both domains of the hole (Two_disks only while it is closed), chained
+// through toroid_chart_point(); the special points are the glue circles
+// r = +-1, the middle circle r = 0 and the disk centres.
+template <class K>
+void check_hole_chart_jacobian(BS::Hole_component<K> hole, std::mt19937_64& rng)
+{
+  std::vector<BS::Hole_domain> domains = {BS::Hole_domain::Tube};
+  if(hole.hole_is_closed())
+    domains.push_back(BS::Hole_domain::Two_disks);
+  for(BS::Hole_domain d : domains)
+  {
+    hole.set_domain(d);
+    std::vector<BS::Chart_point> special;
+    for(int k = 0; k < 8; ++k)
+    {
+      const double t = k * M_PI / 4.;
+      if(d == BS::Hole_domain::Tube)
+        for(double r : {-1., -0.5, 0., 0.5, 1.})
+          special.emplace_back(0, t, r);
+      else
+        for(std::size_t c = 0; c < 2; ++c)
+          for(double r : {0., 1e-300, 1e-17, 0.5, 1.})
+            special.emplace_back(c, r * std::cos(t), r * std::sin(t));
+    }
+    check_chart_jacobians(hole,
+                          smooth_points(hole, 1000, rng,
+                                        [&](const BS::Chart_point& u) {
+                                          return toroid_smooth_at(hole.toroid_chart_point(u)) &&
+                                                 (d == BS::Hole_domain::Tube || ellipsoid_smooth_at(u));
+                                        }),
+                          test_points(hole, 200, rng, special),
+                          d == BS::Hole_domain::Tube ? "hole (tube) chart Jacobian" : "hole (two disks) chart Jacobian");
+  }
+}
+
+// A deliberately wrong chart Jacobian must be caught.
+template <class K>
+struct Wrong_chart_jacobian_ellipsoid : BS::Superquadric_ellipsoid<K>
+{
+  typedef BS::Superquadric_ellipsoid<K> Base;
+  using Base::Base;
+  typename Base::Point_3 point_and_chart_jacobian(const BS::Chart_point& p, typename Base::Chart_jacobian& D) const
+  {
+    const typename Base::Point_3 s = Base::point_and_chart_jacobian(p, D);
+    D(2, 1) *= 1.0001;
+    return s;
+  }
+};
+
+template <class K>
+void test_chart_jacobian_special_cases(std::mt19937_64& rng)
+{
+  // The capped derivative of the signed power: finite at 0, the limit for e >= 1.
+  BS_CHECK(std::isfinite(BS::internal::signed_pow_derivative(0., 0.01)) &&
+             BS::internal::signed_pow_derivative(0., 0.01) > 1e12, "cap at e = 0.01");
+  BS_CHECK(BS::internal::signed_pow_derivative(0., 1.) == 1. && BS::internal::signed_pow_derivative(0., 2.) == 0.,
+           "limits at e >= 1");
+  double d = 0.;
+  const double v = BS::internal::signed_pow_and_derivative(-0.3, 0.7, d);
+  BS_CHECK(std::abs(v + std::pow(0.3, 0.7)) < 1e-15 && std::abs(d - 0.7 * std::pow(0.3, -0.3)) < 1e-14,
+           "signed_pow_and_derivative: " << v << ", " << d);
+
+  // The lowest exponents: finite on every locus.
+  const BS::Superquadric_ellipsoid<K> flat(1., 2., 0.5, 0.01, 0.01);
+  BS_CHECK(!BS::check_chart_jacobian(flat, ellipsoid_special_points(flat.chart_margin())).has_non_finite,
+           "ellipsoid with e = 0.01");
+  const BS::Superquadric_toroid<K> flat_torus(1., 2., 0.5, 1., 1., 0.01, 0.01);
+  BS_CHECK(!BS::check_chart_jacobian(flat_torus, toroid_special_points()).has_non_finite, "toroid with e = 0.01");
+
+  // At the pole the columns are the partial derivatives along the chart axes:
+  // (pi/2) (a1, 0, 0) and (pi/2) (0, +-a2, 0) for e1 = 1, whatever e2.
+  const BS::Superquadric_ellipsoid<K> ell(1., 2., 0.5, 1., 0.4);
+  for(std::size_t c = 0; c < 2; ++c)
+  {
+    typename BS::Superquadric_ellipsoid<K>::Chart_jacobian D;
+    ell.point_and_chart_jacobian(BS::Chart_point(c, 0., 0.), D);
+    Eigen::Matrix<double, 3, 2> expected;
+    expected << 1., 0., 0., (c == 0 ? 2. : -2.), 0., 0.;
+    BS_CHECK((D - 0.5 * M_PI * expected).norm() < 1e-15, "pole of chart " << c << ":\n" << D);
+    // the one-sided difference along each axis agrees
+    const double h = 1e-7;
+    const auto s0 = ell.point(BS::Chart_point(c, 0., 0.)), sx = ell.point(BS::Chart_point(c, h, 0.)),
+               sy = ell.point(BS::Chart_point(c, 0., h));
+    BS_CHECK(std::abs((sx.x() - s0.x()) / h - D(0, 0)) < 1e-6 && std::abs((sy.y() - s0.y()) / h - D(1, 1)) < 1e-6,
+             "one-sided differences at the pole");
+  }
+  // The point is the same as point() (the projection compares both).
+  std::vector<BS::Chart_point> pts = test_points(ell, 100, rng, ellipsoid_special_points(ell.chart_margin()));
+  const BS::Superquadric_toroid<K> tor(1., 2., 0.5, 1.5, 2.5, 0.3, 1.7);
+  bool same = true;
+  for(const BS::Chart_point& u : pts)
+  {
+    typename BS::Superquadric_ellipsoid<K>::Chart_jacobian D;
+    same = same && ell.point_and_chart_jacobian(u, D) == ell.point(u);
+  }
+  for(const BS::Chart_point& u : test_points(tor, 100, rng, toroid_special_points()))
+  {
+    typename BS::Superquadric_toroid<K>::Chart_jacobian D;
+    same = same && tor.point_and_chart_jacobian(u, D) == tor.point(u);
+  }
+  BS_CHECK(same, "point_and_chart_jacobian() and point() disagree");
+
+  // The placed model: R times the shape's chart Jacobian.
+  const BS::Deformable_model<BS::Superquadric_ellipsoid<K>> model(
+    BS::Superquadric_ellipsoid<K>(1.2, 0.7, 2., 0.6, 1.4), Eigen::Vector3d(1., -2., 3.), Eigen::Vector4d(0.3, -0.5, 0.2, 0.8));
+  const auto rm = BS::check_chart_jacobian(model, smooth_points(model.shape(), 500, rng, ellipsoid_smooth_at));
+  BS_CHECK(!rm.has_non_finite && rm.max_relative_error < 1e-6, "Deformable_model chart Jacobian: " << rm.max_relative_error);
+
+  // The checker catches a wrong column.
+  const Wrong_chart_jacobian_ellipsoid<K> wrong(1., 2., 3., 0.7, 0.8);
+  const auto rw = BS::check_chart_jacobian(wrong, smooth_points(wrong, 100, rng, ellipsoid_smooth_at));
+  BS_CHECK(rw.max_relative_error > 1e-5 && rw.worst_column == 1,
+           "the chart Jacobian checker missed a wrong column: " << rw.max_relative_error << ", column " << rw.worst_column);
+}
+
 template <class K>
 void test_jacobians(std::mt19937_64& rng)
 {
@@ -96,6 +306,7 @@ void test_jacobians(std::mt19937_64& rng)
   std::vector<std::array<double, 2>> exponents = {{{1., 1.}}, {{0.1, 0.1}}, {{2., 2.}}, {{0.1, 2.}}, {{2., 0.1}}};
   for(int i = 0; i < 5; ++i)
     exponents.push_back({{expo(rng), expo(rng)}});
+  std::mt19937_64 chart_rng(17);
   for(const auto& e : exponents)
   {
     const BS::Superquadric_ellipsoid<K> ell(size(rng), size(rng), size(rng), e[0], e[1]);
@@ -103,10 +314,20 @@ void test_jacobians(std::mt19937_64& rng)
                               "ellipsoid");
     const BS::Superquadric_toroid<K> tor(size(rng), size(rng), size(rng), ring(rng), ring(rng), e[0], e[1]);
     check_primitive_jacobians(tor, test_points(tor, 1100, rng, toroid_special_points()), "toroid");
+    // The chart Jacobians of the same shapes, and of holes with these exponents (open and closed).
+    // (Their own random engine: the shapes drawn from `rng` stay those of the parameter checks.)
+    check_ellipsoid_chart_jacobian(ell, chart_rng);
+    check_toroid_chart_jacobian(tor, chart_rng, "toroid chart Jacobian");
+    const auto& qt = tor.parameters();
+    check_hole_chart_jacobian(BS::Hole_component<K>(qt[0], qt[1], qt[2], qt[3], qt[4], e[0], e[1], BS::Hole_domain::Tube),
+                              chart_rng);
+    check_hole_chart_jacobian(BS::Hole_component<K>(qt[0], qt[1], qt[2], 1., 1., e[0], e[1]), chart_rng);
   }
   // a4 = a5 = 1: the pinched toroid of the hole blend
   const BS::Superquadric_toroid<K> pinched(1., 1.2, 0.8, 1., 1., 0.7, 1.3);
   check_primitive_jacobians(pinched, test_points(pinched, 1000, rng, toroid_special_points()), "pinched toroid");
+  check_toroid_chart_jacobian(pinched, chart_rng, "pinched toroid chart Jacobian");
+  test_chart_jacobian_special_cases<K>(chart_rng);
 
   const Wrong_jacobian_ellipsoid<K> wrong(1., 2., 3., 0.7, 0.8);
   const BS::Jacobian_check_report r = BS::check_jacobian(wrong, test_points(wrong, 100, rng, {}));

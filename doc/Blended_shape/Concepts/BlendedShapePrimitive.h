@@ -15,7 +15,7 @@ and fitted by `CGAL::Blended_shapes::Blended_shape_fitter`; a model of this
 concept only describes the shape in its own frame.
 
 <b>Charts.</b> Each chart `c` in `[0, number_of_charts())` has a domain
-(`chart_domain(c)`: a disk or a periodic torus square) on which the map, its
+(`chart_domain(c)`: a disk, a periodic torus square or an open tube periodic in `x` only) on which the map, its
 Jacobian and its normal are smooth. Charts may overlap (the two halves of the
 ellipsoid overlap in a band around the equator); where they do, the same
 surface point has several chart points, and the primitive tells which ones with
@@ -36,10 +36,12 @@ and the normal must be finite for every parameter vector inside the bounds and
 every chart point of a domain, including the chart centres and seams.
 
 <b>Checking a model.</b> `CGAL::Blended_shapes::check_jacobian()` compares
-`point_and_jacobian()` with finite differences of `point()`;
+`point_and_jacobian()` with finite differences of `point()`, and
+`CGAL::Blended_shapes::check_chart_jacobian()` does the same for
+`point_and_chart_jacobian()`;
 `CGAL::Blended_shapes::check_chart_consistency()` checks that `to_chart()`,
 `canonical_chart_point()`, `point()` and `normal()` agree where charts overlap.
-A new model should pass both (see \ref custom_primitive.cpp).
+A new model should pass all three (see \ref custom_primitive.cpp).
 
 Models are copied freely (the fitter copies the model to try a step), so they
 should be cheap to copy. A default constructor is not required.
@@ -82,6 +84,11 @@ public:
   /// The parameter Jacobian `ds/dq` at one chart point: `Eigen::Matrix<double, 3, P>`;
   /// column `i` is the derivative of the point with respect to parameter `i`.
   typedef Eigen::Matrix<double, 3, P> Jacobian;
+
+  /// The chart Jacobian at one chart point: `Eigen::Matrix<double, 3, 2>`;
+  /// column 0 is the derivative of the point with respect to the first chart
+  /// coordinate `x`, column 1 with respect to `y`.
+  typedef Eigen::Matrix<double, 3, 2> Chart_jacobian;
 
   /// @}
 
@@ -151,6 +158,18 @@ public:
 
   /// The parameter Jacobian `ds/dq` at `p`, written to `J`.
   void jacobian(const CGAL::Blended_shapes::Chart_point& p, Jacobian& J) const;
+
+  /// The surface point `s(p)`, returned, and the chart Jacobian
+  /// `D = [ds/dx, ds/dy]` at `p` (`x`, `y` the chart coordinates of `p`),
+  /// written to `D`. Exact (analytic); the foot-point projection
+  /// (`CGAL::Blended_shapes::refine_closest_point()`) takes its Gauss-Newton
+  /// steps with it. Where the map is not differentiable (a signed power with
+  /// an exponent other than 1 at a zero cosine, the pole of a superquadric
+  /// ellipsoid, the pinch of a closed hole) `D` holds a one-sided or limit
+  /// value, or a finite cap where the derivative is infinite (the package's
+  /// models floor |c| at the machine epsilon in e |c|^(e-1)), but never a
+  /// NaN or an infinity.
+  Point_3 point_and_chart_jacobian(const CGAL::Blended_shapes::Chart_point& p, Chart_jacobian& D) const;
 
   /// The unit outward normal at `p` (see the chart orientation above). Defined
   /// at every point of the domain, also where the chart map is not regular

@@ -104,6 +104,19 @@ struct Alpha_and_gradient
   Gradient gradient;        ///< the derivatives of `alpha` with respect to the region's parameters
 };
 
+/// \ingroup PkgBlendedShapeBlending
+/// Coordinates of a point enclosed by a strip boundary curve `C(d_b, .)`:
+/// the point is `c + t (C(d_b, theta) - c)`, `c` the centre of the region
+/// (the "disk-shaped coordinate system" of A.1, used for the discarded
+/// interior of disk regions).
+struct Core_coordinates
+{
+  std::size_t segment = 0; ///< the segment of the boundary curve the ray from the centre meets
+  double gamma = 0.;       ///< the segment parameter of that boundary point
+  double theta = 0.;       ///< the strip angle of that boundary point, in [0, 2 pi)
+  double t = 0.;           ///< the radial coordinate, 0 at the centre, 1 on the boundary curve
+};
+
 /*!
 \ingroup PkgBlendedShapeBlending
 
@@ -669,6 +682,13 @@ public:
   */
   Local_gradient local_coordinate_gradient(std::size_t i, double d, double gamma) const
   {
+    return -strip_jacobian(i, d, gamma).inverse() * strip_point_local_derivative(i, d, gamma);
+  }
+
+  /// `∂C_i(d,gamma)/∂(data)` at fixed `(d, gamma)`: how the strip point of
+  /// eq. 24 moves with the data of segment `i` (columns as in `Local_gradient`).
+  Local_gradient strip_point_local_derivative(std::size_t i, double d, double gamma) const
+  {
     const std::size_t n = number_of_segments();
     const std::size_t ip = next(i), im = (i + n - 1) % n;
     const Vector_2& a = m_control[im];
@@ -712,8 +732,7 @@ public:
     dG_dP.block<2, 2>(8, 2) = Mi * Ui - Mj * Uj;
     dG_dP.block<2, 2>(8, 4) = Mj * Uj;
 
-    const Matrix_2 A = strip_jacobian(i, d, gamma);
-    return -A.inverse() * (dC_dG * dG_dP);
+    return dC_dG * dG_dP;
   }
 
   /// Strip coordinates at `u` with the gradients of `d` and `theta`
@@ -1319,6 +1338,133 @@ public:
     return J;
   }
 
+  /// The centre `(e_u, e_v)` of the ellipse.
+  Vector_2 center() const { return Vector_2(m_q[E_U], m_q[E_V]); }
+
+  /// `C(d, theta)` (eq. 24, 27) and its Jacobian `[∂C/∂d, ∂C/∂theta]`.
+  Vector_2 strip_point(double d, double theta, Eigen::Matrix2d* jacobian = nullptr) const
+  {
+    double gamma;
+    const std::size_t i = m_region->segment_of_theta(theta, gamma);
+    if(jacobian)
+    {
+      *jacobian = m_region->strip_jacobian(i, d, gamma);
+      jacobian->col(1) /= segment_theta_span(i);
+    }
+    return m_region->strip_point(i, d, gamma);
+  }
+
+  /// `∂C_i(d,gamma)/∂(e_u, e_v, e_1, e_2, e_theta)` at fixed `(d, gamma)`.
+  Eigen::Matrix<double, 2, 5> strip_point_shape_derivative(std::size_t i, double d, double gamma) const
+  {
+    return chain_to_shape(i, m_region->strip_point_local_derivative(i, d, gamma));
+  }
+
+  /// \name Disk coordinates (A.1: a disk-shaped coordinate system)
+  /// The inside of the strip boundary curve `C(d_b, .)` is covered by the
+  /// rays from the centre: `u = c + t (C(d_b, theta) - c)`, `t in [0, 1)`.
+  /// With `d_b = -1` this parameterizes the discarded interior of a disk
+  /// region of the base shape; with `d_b = +1` the retained interior of the
+  /// matching region of the added shape, so the correspondence beta extends
+  /// from the strip (eq. 16) to the whole disk (Fig. 7) by equal `(t, theta)`.
+  /// The boundary curve must be star-shaped from the centre (true for
+  /// ellipses whose strip half-width is below the smaller radius of curvature).
+  /// @{
+
+  /// The disk coordinates of `u`, if `u` lies inside `C(d_b, .)` (`t < 1`).
+  std::optional<Core_coordinates> core_coordinates(const Vector_2& u, double d_b) const
+  {
+    const Vector_2 c = center(), v = u - c;
+    const double vn = v.norm();
+    const std::size_t n = number_of_segments();
+    if(vn == 0.)
+    {
+      Core_coordinates k;
+      k.theta = m_theta[0];
+      return k;
+    }
+    std::optional<Core_coordinates> best;
+    for(std::size_t i = 0; i < n; ++i)
+    {
+      // cross(C_i(d_b, g) - c, v) is quadratic in g: Bernstein coefficients f0, f1, f2.
+      const Vector_2 P0 = m_region->strip_point(i, d_b, 0.) - c, P2 = m_region->strip_point(i, d_b, 1.) - c;
+      const Vector_2 Pm = m_region->strip_point(i, d_b, 0.5) - c;
+      const Vector_2 P1 = 2. * Pm - 0.5 * (P0 + P2); // middle control point of the quadratic
+      const double f0 = cross(P0, v), f1 = cross(P1, v), f2 = cross(P2, v);
+      const double a = f0 - 2. * f1 + f2, b = 2. * (f1 - f0), cc = f0;
+      double roots[2];
+      int count = 0;
+      if(std::abs(a) <= 1e-14 * (std::abs(b) + std::abs(cc)))
+      {
+        if(b != 0.)
+          roots[count++] = -cc / b;
+      }
+      else
+      {
+        const double disc = b * b - 4. * a * cc;
+        if(disc >= 0.)
+        {
+          const double sq = std::sqrt(disc), qq = -0.5 * (b + (b >= 0. ? sq : -sq));
+          roots[count++] = qq / a;
+          if(qq != 0.)
+            roots[count++] = cc / qq;
+        }
+      }
+      for(int k = 0; k < count; ++k)
+      {
+        const double g = roots[k];
+        if(!(g >= -1e-12 && g <= 1. + 1e-12))
+          continue;
+        const double gc = (std::min)(1., (std::max)(0., g));
+        const Vector_2 P = m_region->strip_point(i, d_b, gc) - c;
+        if(!(P.dot(v) > 0.))
+          continue;
+        Core_coordinates kc;
+        kc.segment = i;
+        kc.gamma = gc;
+        kc.t = vn / P.norm();
+        kc.theta = wrap_angle(theta_at(i) + gc * segment_theta_span(i));
+        if(!best || std::abs(kc.gamma - 0.5) < std::abs(best->gamma - 0.5))
+          best = kc;
+      }
+    }
+    if(best && best->t < 1.)
+      return best;
+    return std::nullopt;
+  }
+
+  /// `c + t (C(d_b, theta) - c)` and its Jacobian `[∂/∂t, ∂/∂theta]`.
+  Vector_2 core_point(double t, double theta, double d_b, Eigen::Matrix2d* jacobian = nullptr) const
+  {
+    Eigen::Matrix2d J;
+    const Vector_2 c = center(), P = strip_point(d_b, theta, &J);
+    if(jacobian)
+    {
+      jacobian->col(0) = P - c;
+      jacobian->col(1) = t * J.col(1);
+    }
+    return c + t * (P - c);
+  }
+
+  /// The gradients of `t` (row 0) and `theta` (row 1) with respect to the
+  /// seven parameters at the fixed chart point `u` with disk coordinates `k`
+  /// (implicit differentiation of `c + t (C(d_b, gamma) - c) = u`).
+  Eigen::Matrix<double, 2, number_of_parameters> core_gradient(const Core_coordinates& k, double d_b) const
+  {
+    const std::size_t i = k.segment;
+    const Vector_2 c = center(), P = m_region->strip_point(i, d_b, k.gamma);
+    Eigen::Matrix2d A;
+    A.col(0) = P - c;
+    A.col(1) = k.t * m_region->strip_jacobian(i, d_b, k.gamma).col(1);
+    Eigen::Matrix<double, 2, 5> dG = k.t * strip_point_shape_derivative(i, d_b, k.gamma);
+    dG.leftCols<2>() += (1. - k.t) * Eigen::Matrix2d::Identity();
+    Eigen::Matrix<double, 2, number_of_parameters> g = Eigen::Matrix<double, 2, number_of_parameters>::Zero();
+    g.leftCols<5>() = -A.inverse() * dG;
+    g.row(1) *= segment_theta_span(i);
+    return g;
+  }
+  /// @}
+
   /// \name Evaluation (forwarded to region())
   /// @{
 
@@ -1397,11 +1543,27 @@ private:
   // Rows d, gamma; columns e_u, e_v, e_1, e_2, e_theta.
   Eigen::Matrix<double, 2, 5> shape_gradient(const Strip_coordinates& c) const
   {
-    const std::size_t n = m_theta.size(), i = c.segment;
-    const Blending_region::Local_gradient L = m_region->local_coordinate_gradient(i, c.d, c.gamma);
-    // mu_i does not depend on the ellipse parameters: columns 6, 7 drop out.
+    return chain_to_shape(c.segment, m_region->local_coordinate_gradient(c.segment, c.d, c.gamma));
+  }
+
+  // A derivative with respect to the local data of segment i, chained to the
+  // ellipse parameters (mu_i does not depend on them: columns 6, 7 drop out).
+  Eigen::Matrix<double, 2, 5> chain_to_shape(std::size_t i, const Blending_region::Local_gradient& L) const
+  {
+    const std::size_t n = m_theta.size();
     return L.block<2, 2>(0, 0) * control_point_jacobian((i + n - 1) % n) +
            L.block<2, 2>(0, 2) * control_point_jacobian(i) + L.block<2, 2>(0, 4) * control_point_jacobian((i + 1) % n);
+  }
+
+  static double cross(const Vector_2& a, const Vector_2& b) { return a.x() * b.y() - a.y() * b.x(); }
+
+  static double wrap_angle(double t)
+  {
+    const double two_pi = 2. * M_PI;
+    t = std::fmod(t, two_pi);
+    if(t < 0.)
+      t += two_pi;
+    return (t >= two_pi) ? 0. : t;
   }
 
   Blending_region build(const Parameter_vector& q) const

@@ -6,6 +6,7 @@
 
 #include <CGAL/Surface_mesh.h>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <sstream>
@@ -35,6 +36,19 @@ closest points found on the mesh are turned into exact domain points.
 - Torus charts are a `4 resolution` x `max(3, 2 resolution)` periodic grid, closed
   (Euler characteristic 0); chart coordinates of a face are unwrapped across
   the seams when interpolated.
+- Tube charts are a grid of `4 resolution` columns, periodic in `x`, and rows
+  `1 / resolution` apart in `y` (rounded up to a whole number of rows on
+  each side of 0), with rows exactly at `y = y_min`, `y = y_max` and, if
+  `y_min < 0 < y_max`, `y = 0`. When `y_min` and `y_max` are multiples of
+  `1 / resolution` (e.g. the hole's `[-1, 1]`) the rows are `1 / resolution`
+  apart and each triangle has the mean chart area `pi / (4 resolution^2)` of
+  a disk triangle; the rows `y = +-j / resolution` of the hole's tube are then
+  the rings of its two disk charts at the same resolution. The mesh
+  is an annulus: two boundary loops (`y = y_min` and `y = y_max`), Euler
+  characteristic 0; chart coordinates of a face are unwrapped across the seam
+  in `x` only.
+
+All triangles are counterclockwise in the chart coordinates `(x, y)`.
 */
 template <class GeomTraits>
 class Chart_mesh
@@ -50,10 +64,11 @@ public:
   typedef typename Mesh::template Property_map<vertex_descriptor, Chart_coordinates> Chart_coordinate_map;
 
   /// Tessellates the domain `domain` of chart `chart_index` with `resolution`
-  /// rings (disk) or `4 resolution` columns (torus). The vertex positions are
+  /// rings (disk) or `4 resolution` columns (torus, tube). The vertex positions are
   /// the chart points themselves, `(x, y, 0)`, until set_positions() is called.
-  /// \throws std::invalid_argument if `resolution` is not in [1, 4096] or the
-  ///         radius of a disk domain is not positive.
+  /// \throws std::invalid_argument if `resolution` is not in [1, 4096], the
+  ///         radius of a disk domain is not positive, or the `y` range of a
+  ///         tube domain is not finite and non-empty (`y_min < y_max`).
   Chart_mesh(std::size_t chart_index, const Chart_domain& domain, int resolution)
     : m_chart(chart_index), m_domain(domain)
   {
@@ -65,10 +80,13 @@ public:
     }
     m_uv = m_mesh.template add_property_map<vertex_descriptor, Chart_coordinates>(
              "v:chart_point", Chart_coordinates{{0., 0.}}).first;
-    if(domain.kind == Chart_kind::Disk)
-      build_disk(resolution);
-    else
-      build_torus(resolution);
+    switch(domain.kind)
+    {
+    case Chart_kind::Disk: build_disk(resolution); break;
+    case Chart_kind::Torus: build_torus(resolution); break;
+    case Chart_kind::Tube: build_tube(resolution); break;
+    default: throw std::invalid_argument("Chart_mesh: unknown chart kind");
+    }
   }
 
   // The chart-coordinate map is a handle into the mesh's own property
@@ -116,7 +134,11 @@ public:
     return {{m_mesh.source(h), m_mesh.target(h), m_mesh.target(m_mesh.next(h))}};
   }
 
-  /// The chart point at barycentric coordinates `b` of face `f`.
+  /// The chart point at barycentric coordinates `b` of face `f`, interpolated
+  /// from the corners' chart coordinates unwrapped across the periodic seams
+  /// (face_chart_coordinates()): on a face across a seam, a periodic
+  /// coordinate may come out slightly outside `[0, 2 pi)`, which is the same
+  /// point of the domain (use the primitive's canonical_chart_point() to reduce it).
   Chart_point chart_point(face_descriptor f, const std::array<double, 3>& b) const
   {
     const std::array<vertex_descriptor, 3> v = face_vertices(f);
@@ -128,7 +150,8 @@ public:
   }
 
   /// Chart coordinates of the corners of `f`, unwrapped across periodic
-  /// seams so that the triangle is a genuine planar triangle.
+  /// seams (both coordinates of a torus, `x` of a tube) so that the triangle
+  /// is a genuine planar triangle.
   std::array<Chart_coordinates, 3> face_chart_coordinates(face_descriptor f) const
   {
     const std::array<vertex_descriptor, 3> v = face_vertices(f);
@@ -151,14 +174,17 @@ private:
     m_uv = m_mesh.template property_map<vertex_descriptor, Chart_coordinates>("v:chart_point").first;
   }
 
+  // Brings corners 1 and 2 within half a period of corner 0, in each
+  // periodic coordinate only (a tube's y is a real boundary, not a seam).
   void unwrap(std::array<Chart_coordinates, 3>& c) const
   {
-    const double period = m_domain.period();
-    if(period == 0.)
-      return;
+    const double periods[2] = {m_domain.x_period(), m_domain.y_period()};
     for(int i = 1; i < 3; ++i)
       for(int k = 0; k < 2; ++k)
       {
+        const double period = periods[k];
+        if(period == 0.)
+          continue;
         const double d = c[i][k] - c[0][k];
         if(d > 0.5 * period) c[i][k] -= period;
         else if(d < -0.5 * period) c[i][k] += period;
@@ -238,6 +264,49 @@ private:
         grid[j * nx + i] = add_vertex(period * double(i) / nx, period * double(j) / ny);
     auto at = [&](std::size_t i, std::size_t j) { return grid[(j % ny) * nx + (i % nx)]; };
     for(std::size_t j = 0; j < ny; ++j)
+      for(std::size_t i = 0; i < nx; ++i)
+      {
+        add_face(at(i, j), at(i + 1, j), at(i + 1, j + 1));
+        add_face(at(i, j), at(i + 1, j + 1), at(i, j + 1));
+      }
+  }
+
+  // The rows of a tube: uniform steps of at most 1/n on each side of 0, with
+  // y_min, 0 (when strictly inside) and y_max exactly; periodic in x like
+  // the torus, with 4n columns; two triangles per cell, counterclockwise.
+  void build_tube(int n)
+  {
+    const double y0 = m_domain.y_min, y1 = m_domain.y_max;
+    if(!(std::isfinite(y0) && std::isfinite(y1) && y0 < y1))
+    {
+      std::ostringstream msg;
+      msg.precision(17);
+      msg << "Chart_mesh: tube domain y range [" << y0 << ", " << y1 << "] is not finite and non-empty";
+      throw std::invalid_argument(msg.str());
+    }
+    // rows over [a, b]: ceil((b - a) n) uniform steps (the small tolerance
+    // keeps ranges that are whole multiples of 1/n from gaining a row)
+    std::vector<double> rows;
+    auto add_rows = [&](double a, double b, bool first) {
+      const int steps = (std::max)(1, int(std::ceil((b - a) * n * (1. - 1e-12))));
+      for(int k = first ? 0 : 1; k <= steps; ++k)
+        rows.push_back(k == steps ? b : a + (b - a) * double(k) / steps);
+    };
+    if(y0 < 0. && 0. < y1)
+    {
+      add_rows(y0, 0., true);
+      add_rows(0., y1, false);
+    }
+    else
+      add_rows(y0, y1, true);
+    const std::size_t nx = 4 * std::size_t(n), ny = rows.size();
+    const double period = m_domain.x_period();
+    std::vector<vertex_descriptor> grid(nx * ny);
+    for(std::size_t j = 0; j < ny; ++j)
+      for(std::size_t i = 0; i < nx; ++i)
+        grid[j * nx + i] = add_vertex(period * double(i) / nx, rows[j]);
+    auto at = [&](std::size_t i, std::size_t j) { return grid[j * nx + (i % nx)]; };
+    for(std::size_t j = 0; j + 1 < ny; ++j)
       for(std::size_t i = 0; i < nx; ++i)
       {
         add_face(at(i, j), at(i + 1, j), at(i + 1, j + 1));

@@ -144,33 +144,34 @@ private:
 The closest point of `p` on the analytic surface of `model`, starting from
 `start` (typically the chart point of the closest point on the tessellation,
 Closest_point_locator::locate()): at most `max_iterations` safeguarded
-Gauss-Newton steps on the chart coordinates (chart Jacobian by central
-differences), each kept only if it brings the model point closer. A step
-that leaves a chart is taken in the canonical chart of its end point.
+Gauss-Newton steps on the chart coordinates, with the analytic chart
+Jacobian (`point_and_chart_jacobian()`: one evaluation per step, which also
+gives the point), each kept only if it brings the model point closer (the
+step is halved up to three times otherwise). A step that leaves a chart is
+taken in the canonical chart of its end point.
 
 The tessellation is a piecewise linear approximation: a closest point found
 on it maps back to a chart point a little off the true foot point (by the
 chord error of the chart triangle), and two charts that share a mesh edge map
 it to different such chart points. Refinement removes this.
 
-`Model` provides `point()`, `chart_domain()` and `canonical_chart_point()`.
+`Model` provides `point_and_chart_jacobian()`, `chart_domain()` and
+`canonical_chart_point()` (as Deformable_model does).
 */
 template <class Model>
 Chart_point refine_closest_point(const Model& model, const Eigen::Vector3d& p, Chart_point start, int max_iterations)
 {
-  Chart_point u = start;
-  auto eval = [&](const Chart_point& v) {
-    const auto x = model.point(v);
+  typedef typename Model::Chart_jacobian Chart_jacobian;
+  auto eval = [&](const Chart_point& v, Chart_jacobian& D) {
+    const auto x = model.point_and_chart_jacobian(v, D);
     return Eigen::Vector3d(x.x(), x.y(), x.z());
   };
-  Eigen::Vector3d x = eval(u);
+  Chart_point u = start;
+  Chart_jacobian J, Jv;
+  Eigen::Vector3d x = eval(u, J);
   double d2 = (p - x).squaredNorm();
   for(int it = 0; it < max_iterations && d2 > 0.; ++it)
   {
-    const double h = 1e-6;
-    Eigen::Matrix<double, 3, 2> J;
-    J.col(0) = (eval(Chart_point(u.chart, u.x + h, u.y)) - eval(Chart_point(u.chart, u.x - h, u.y))) / (2. * h);
-    J.col(1) = (eval(Chart_point(u.chart, u.x, u.y + h)) - eval(Chart_point(u.chart, u.x, u.y - h))) / (2. * h);
     // Levenberg-regularized: where exponents above 1 flatten the map (its chart
     // Jacobian loses rank on the poles and axes) the step still moves along
     // the direction that is left.
@@ -190,11 +191,11 @@ Chart_point refine_closest_point(const Model& model, const Eigen::Vector3d& p, C
       if(!dom.contains(v.x, v.y))
         continue;
       v = model.canonical_chart_point(v);
-      const Eigen::Vector3d xv = eval(v);
+      const Eigen::Vector3d xv = eval(v, Jv); // the Jacobian of the next step, if this one is kept
       const double dv = (p - xv).squaredNorm();
       if(dv < d2)
       {
-        u = v; x = xv; d2 = dv; improved = true;
+        u = v; x = xv; d2 = dv; J = Jv; improved = true;
       }
     }
     if(!improved)

@@ -43,6 +43,9 @@ public:
   typedef typename Geom_traits::Vector_3 Vector_3;  ///< the vector type
   /// The model Jacobian `L = dx/dq`, 3 x number_of_parameters().
   typedef Eigen::Matrix<double, 3, Eigen::Dynamic> Jacobian;
+  /// The chart Jacobian of the model point (3 x 2): its derivatives with
+  /// respect to the two chart coordinates of `u`.
+  typedef Eigen::Matrix<double, 3, 2> Chart_jacobian;
 
   /// The translation (3) and the quaternion (4), first in the parameter vector.
   static constexpr int number_of_pose_parameters = 7;
@@ -167,6 +170,16 @@ public:
     for(int k = 0; k < 4; ++k)
       L.col(3 + k) = m_dR[std::size_t(k)] * sv;
     L.template rightCols<number_of_shape_parameters>().noalias() = m_R * Js;
+    return place(s);
+  }
+
+  /// x(u), the same as point(), and the chart Jacobian `D = R ds/du`, from
+  /// the shape's point_and_chart_jacobian() (the pose does not depend on `u`).
+  Point_3 point_and_chart_jacobian(const Chart_point& u, Chart_jacobian& D) const
+  {
+    typename Shape::Chart_jacobian Ds;
+    const Point_3 s = m_shape.point_and_chart_jacobian(u, Ds);
+    D.noalias() = m_R * Ds;
     return place(s);
   }
   /// @}

@@ -30,48 +30,9 @@ enum class Hole_domain
   /// of the surface while the hole is closed.
   Two_disks,
   /// One chart, the strip `(theta, r)` in `[0, 2 pi) x [-1, 1]`, periodic in
-  /// `theta` only (Fig. 31(a)). Produces a tube glued into the base: a hole
-  /// that can open.
+  /// `theta` only (Fig. 31(a)), the chart domain `Chart_domain::tube(-1., 1.)`.
+  /// Produces a tube glued into the base: a hole that can open.
   Tube
-};
-
-/// \ingroup PkgBlendedShapePrimitives
-/// Description of one chart domain of a Hole_component.
-///
-/// The disk charts of the Two_disks domain are the package's disk domains
-/// (`Chart_domain::disk(1.)`). The chart of the Tube domain is a strip
-/// periodic in `x` only, which Chart_domain cannot describe yet (its kinds
-/// are Disk and Torus; a Torus would wrongly make `y = r` periodic): chart
-/// meshes, random chart points and the chart-consistency check of the tube
-/// need a Tube kind of Chart_domain (`x` periodic with period `2 pi`, `y` in
-/// `[y_min, y_max]`, unwrapped across the seam in `x` only). Until then this
-/// struct is the description of that chart.
-struct Hole_chart_domain
-{
-  /// The domain the chart belongs to: `Two_disks` for either disk chart,
-  /// `Tube` for the tube chart.
-  Hole_domain domain = Hole_domain::Two_disks;
-  /// Disk charts: the radius of the disk (1, the circle `|r| = 1`); tube: 0.
-  double radius = 1.;
-  /// Tube: the period `2 pi` of `x = theta` (`y` is not periodic); disks: 0.
-  double period = 0.;
-  /// Tube: the smallest `y = r`, -1; disks: `-radius`.
-  double y_min = -1.;
-  /// Tube: the largest `y = r`, 1; disks: `radius`.
-  double y_max = 1.;
-
-  /// A disk chart of the Two_disks domain: the unit disk.
-  static Hole_chart_domain disk() { return Hole_chart_domain{Hole_domain::Two_disks, 1., 0., -1., 1.}; }
-  /// The chart of the Tube domain: `x` in `[0, 2 pi)` periodic, `y` in `[-1, 1]`.
-  static Hole_chart_domain tube() { return Hole_chart_domain{Hole_domain::Tube, 0., 2. * M_PI, -1., 1.}; }
-
-  /// Whether `(x, y)` is a point of the domain (the periodic `x` of the tube: any finite value).
-  bool contains(double x, double y) const
-  {
-    if(domain == Hole_domain::Tube)
-      return std::isfinite(x) && y >= y_min && y <= y_max;
-    return x * x + y * y <= radius * radius;
-  }
 };
 
 /*!
@@ -131,11 +92,12 @@ tangent to the axis): normal() there returns the normal at `theta = 0`, the
 same on both domains, though the normals around the pinch have no limit.
 
 <b>Charts and meshes.</b> In the Two_disks domain chart_domain() is
-`Chart_domain::disk(1.)`, and make_chart_meshes() tessellates both disks. In
-the Tube domain no Chart_domain describes the chart yet (see
-Hole_chart_domain): chart_domain() throws `std::logic_error` and
-hole_chart_domain() describes it; everything else (point(), the Jacobian,
-normal(), to_chart(), canonical_chart_point()) works on the tube chart.
+`Chart_domain::disk(1.)` for both charts; in the Tube domain it is
+`Chart_domain::tube(-1., 1.)` (Chart_kind::Tube: `x` periodic with period
+`2 pi`, `y` in `[-1, 1]`). make_chart_meshes(), random_chart_point() and
+check_chart_consistency() work on both domains; the tube's chart mesh has a
+row of vertices on each glue circle `r = -1`, `r = 1` (its two boundary
+loops) and one on the middle circle `r = 0`.
 
 Parameters `(a1, a2, a3, a4, a5, e1, e2)` with the bounds of
 Superquadric_toroid (`a1, a2, a3 > 0`, `a4, a5 >= 1`, `ei` in [0.01, 2]); the
@@ -143,7 +105,7 @@ defaults are the toroid's except `a4 = a5 = 1`: a hole starts closed.
 
 \tparam GeomTraits a CGAL kernel whose `FT` is `double`.
 
-\cgalModels{BlendedShapePrimitive (in the Tube domain, except chart_domain(), see above)}
+\cgalModels{BlendedShapePrimitive (in both domains; the Two_disks domain only while the hole is closed)}
 */
 template <class GeomTraits>
 class Hole_component
@@ -162,6 +124,8 @@ public:
   typedef typename Toroid::Parameter_vector Parameter_vector;
   /// The parameter Jacobian ds/dq at one chart point (3 x 7).
   typedef typename Toroid::Jacobian Jacobian;
+  /// The chart Jacobian [ds/dx, ds/dy] at one chart point (3 x 2).
+  typedef typename Toroid::Chart_jacobian Chart_jacobian;
 
   /// Indices into the parameter vector: those of Superquadric_toroid.
   enum Parameter_index
@@ -315,20 +279,13 @@ public:
   /// Two_disks domain, 1 (the tube) in the Tube domain.
   std::size_t number_of_charts() const { return (m_domain == Hole_domain::Tube) ? 1 : 2; }
 
-  /// The description of chart `c` in the current domain, also for the tube.
-  Hole_chart_domain hole_chart_domain(std::size_t) const
-  {
-    return (m_domain == Hole_domain::Tube) ? Hole_chart_domain::tube() : Hole_chart_domain::disk();
-  }
-
-  /// Two_disks domain: `Chart_domain::disk(1.)` for both charts.
-  /// \throws std::logic_error in the Tube domain, which Chart_domain cannot
-  ///         describe yet (see Hole_chart_domain and hole_chart_domain()).
+  /// The domain of chart `c` in the current domain: `Chart_domain::tube(-1., 1.)`
+  /// (`x = theta` periodic with period `2 pi`, `y = r` in `[-1, 1]`) in the
+  /// Tube domain, `Chart_domain::disk(1.)` for both charts of the Two_disks domain.
   Chart_domain chart_domain(std::size_t) const
   {
     if(m_domain == Hole_domain::Tube)
-      throw std::logic_error("Hole_component::chart_domain: the Tube chart (x periodic, y in [-1, 1]) has no "
-                             "Chart_domain kind yet; use hole_chart_domain(), or the Two_disks domain");
+      return Chart_domain::tube(-1., 1.);
     return Chart_domain::disk(1.);
   }
 
@@ -369,6 +326,49 @@ public:
 
   /// The parameter Jacobian ds/dq at `p`.
   void jacobian(const Chart_point& p, Jacobian& J) const { point_and_jacobian(p, J); }
+
+  /// The surface point at `p` (the same as point()), and the chart Jacobian
+  /// `D = [ds/dx, ds/dy]` there: the toroid's chart Jacobian `[ds/dv, ds/du]`
+  /// at toroid_chart_point(p), chained with `u = (1 + r/2) pi`, and on the
+  /// Two_disks domain with the polar map of to_domain() (`theta`, `r = +-rho`).
+  /// Finite everywhere (the toroid's signed power derivatives are capped).
+  /// Within internal::signed_power_derivative_floor of a disk centre, where
+  /// the polar map is not differentiable (the pinch is a cusp), column `k` is
+  /// the one-sided derivative along the positive chart axis `k`, from the
+  /// centre outward.
+  Point_3 point_and_chart_jacobian(const Chart_point& p, Chart_jacobian& D) const
+  {
+    const double h = 0.5 * M_PI; // du/dr
+    Chart_jacobian Dt;
+    const Point_3 s = m_toroid.point_and_chart_jacobian(toroid_chart_point(p), Dt);
+    if(m_domain == Hole_domain::Tube)
+    {
+      D.col(0) = Dt.col(0);
+      D.col(1) = h * Dt.col(1);
+      return s;
+    }
+    // Chart 0: theta = atan2(-y, x), r = rho; chart 1: theta = atan2(y, x), r = -rho.
+    const double sr = (p.chart == 0) ? 1. : -1.;
+    const double rho = std::hypot(p.x, p.y);
+    if(rho < internal::signed_power_derivative_floor)
+    {
+      // Rays from the centre along +x (theta = 0) and +y (theta = -sr pi/2):
+      // theta is constant on each, r = sr t.
+      Chart_jacobian Dx, Dy;
+      m_toroid.point_and_chart_jacobian(Chart_point(0, 0., M_PI), Dx);
+      m_toroid.point_and_chart_jacobian(Chart_point(0, wrap(-sr * h), M_PI), Dy);
+      D.col(0) = (sr * h) * Dx.col(1);
+      D.col(1) = (sr * h) * Dy.col(1);
+      return s;
+    }
+    // d theta = sr (uy, -ux) / rho, d r = sr (ux, uy); the ds/dtheta column is
+    // divided by rho first: it vanishes like rho^2 at the centre of a closed hole.
+    const double ux = p.x / rho, uy = p.y / rho;
+    const Eigen::Vector3d dtheta = (sr / rho) * Dt.col(0), dr = (sr * h) * Dt.col(1);
+    D.col(0) = uy * dtheta + ux * dr;
+    D.col(1) = -ux * dtheta + uy * dr;
+    return s;
+  }
 
   /// The unit outward normal at `p`: the toroid's at toroid_chart_point(p)
   /// (both domains are oriented like the toroid's chart). At the pinch point

@@ -13,7 +13,8 @@ namespace Blended_shapes {
 \ingroup PkgBlendedShapeIO
 
 The exception thrown by the input functions of the package
-(`read_points()`, `read_triangle_mesh()`, `check_points()`) when the data
+(`read_points()`, `read_triangle_mesh()`, `check_points()`,
+`read_blended_shape()`, `read_blended_shape_json()`) when the data
 cannot be used.
 
 `what()` is a complete sentence for the end user: it names the function,
@@ -29,7 +30,7 @@ public:
   {
     File_not_found,       ///< no file at the given path
     Unreadable_file,      ///< the path exists but cannot be read (a directory, no permission, I/O error)
-    Unsupported_format,   ///< the file name extension is not one the package reads
+    Unsupported_format,   ///< the file name extension, or a model file's `"format"` or `"version"`, is not one the package reads
     Malformed_content,    ///< the content does not parse in the format of its extension
     No_points,            ///< no points (or, for a mesh, no faces)
     Too_few_points,       ///< fewer than `minimum_number_of_points` points

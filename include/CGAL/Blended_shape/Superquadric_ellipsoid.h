@@ -62,6 +62,8 @@ public:
   typedef Eigen::Matrix<double, number_of_parameters, 1> Parameter_vector;
   /// The parameter Jacobian ds/dq at one chart point (3 x 5).
   typedef Eigen::Matrix<double, 3, number_of_parameters> Jacobian;
+  /// The chart Jacobian [ds/dx, ds/dy] at one chart point (3 x 2).
+  typedef Eigen::Matrix<double, 3, 2> Chart_jacobian;
 
   /// Indices into the parameter vector.
   enum Parameter_index { A1 = 0, A2, A3, E1, E2 };
@@ -229,6 +231,56 @@ public:
 
   /// The parameter Jacobian ds/dq at `p`.
   void jacobian(const Chart_point& p, Jacobian& J) const { point_and_jacobian(p, J); }
+
+  /// The surface point at `p` (the same as point()), and the chart Jacobian
+  /// `D = [ds/dx, ds/dy]` there, analytic. Where a signed power is not
+  /// differentiable (a zero cosine or sine with an exponent below 1) its
+  /// derivative is capped (internal::signed_power_derivative_floor), so `D`
+  /// is always finite. At the pole (`rho = 0`) the columns are the partial
+  /// derivatives along the chart axes, which exist there (the map is
+  /// differentiable at the pole only for `e1 > 1` or `e1 = e2 = 1`).
+  Point_3 point_and_chart_jacobian(const Chart_point& p, Chart_jacobian& D) const
+  {
+    const double h = 0.5 * M_PI; // d eta / d rho, up to sign
+    const double sigma = (p.chart == 0) ? 1. : -1.; // chart 1 mirrors y and the latitude
+    const Angles a = angles(p);
+    const double rho = std::hypot(p.x, p.y);
+    const double e1 = m_q[E1], e2 = m_q[E2], a1 = m_q[A1], a2 = m_q[A2], a3 = m_q[A3];
+    double dA, dB, dC, dT;
+    const double A = internal::signed_pow_and_derivative(a.cos_eta, e1, dA);
+    const double B = internal::signed_pow_and_derivative(a.cos_omega, e2, dB);
+    const double C = internal::signed_pow_and_derivative(a.sin_omega, e2, dC);
+    const double T = internal::signed_pow_and_derivative(a.sin_eta, e1, dT);
+    // g = A / rho, the factor of the longitude terms, from the smooth ratio
+    // sin(pi rho / 2) / rho (pi/2 at the pole) so that it stays finite at
+    // the pole: A / rho = |cos eta|^(e1 - 1) (cos eta / rho).
+    const double g = (dA / e1) * (rho > 0. ? a.cos_eta / rho : h);
+    if(rho == 0.)
+    {
+      // Partial derivatives along +x (longitude 0) and +y: the latitude
+      // terms vanish (d sin(eta)/d rho = 0 at the pole) and the longitude
+      // is constant along each axis.
+      D << a1 * g, 0.,
+           0., sigma * a2 * g,
+           0., 0.;
+    }
+    else
+    {
+      // rho, omega as functions of (x, y): d rho = (ux, uy), d omega = sigma (-uy, ux) / rho,
+      // with (ux, uy) = (x, y) / rho; cos omega = ux, sin omega = sigma uy.
+      const double ux = a.cos_omega, uy = sigma * a.sin_omega;
+      // d cos(eta) / d rho = (pi/2) cos(pi rho / 2), d sin(eta) / d rho = -sigma (pi/2) sin(pi rho / 2)
+      const double dA_drho = dA * h * a.sin_eta * sigma;
+      const double dT_drho = -sigma * dT * h * a.cos_eta;
+      D(0, 0) = a1 * (dA_drho * ux * B + g * dB * uy * uy);
+      D(0, 1) = a1 * (dA_drho * uy * B - g * dB * ux * uy);
+      D(1, 0) = a2 * (dA_drho * ux * C - sigma * g * dC * ux * uy);
+      D(1, 1) = a2 * (dA_drho * uy * C + sigma * g * dC * ux * ux);
+      D(2, 0) = a3 * dT_drho * ux;
+      D(2, 1) = a3 * dT_drho * uy;
+    }
+    return Point_3(a1 * A * B, a2 * A * C, a3 * T); // rounded as in point()
+  }
 
   /// Unit outward normal, from the closed form of the superquadric's
   /// implicit gradient (defined at the poles too, for any exponent in bounds).

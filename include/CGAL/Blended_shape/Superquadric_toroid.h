@@ -50,6 +50,8 @@ public:
   typedef Eigen::Matrix<double, number_of_parameters, 1> Parameter_vector;
   /// The parameter Jacobian ds/dq at one chart point (3 x 7).
   typedef Eigen::Matrix<double, 3, number_of_parameters> Jacobian;
+  /// The chart Jacobian [ds/dx, ds/dy] = [ds/dv, ds/du] at one chart point (3 x 2).
+  typedef Eigen::Matrix<double, 3, 2> Chart_jacobian;
 
   /// Indices into the parameter vector.
   enum Parameter_index { A1 = 0, A2, A3, A4, A5, E1, E2 };
@@ -150,6 +152,30 @@ public:
 
   /// The parameter Jacobian ds/dq at `p`.
   void jacobian(const Chart_point& p, Jacobian& J) const { point_and_jacobian(p, J); }
+
+  /// The surface point at `p` (the same as point()), and the chart Jacobian
+  /// `D = [ds/dx, ds/dy] = [ds/dv, ds/du]` there, analytic. Where a signed
+  /// power is not differentiable (a zero cosine or sine with an exponent
+  /// below 1) its derivative is capped (internal::signed_power_derivative_floor),
+  /// so `D` is always finite.
+  Point_3 point_and_chart_jacobian(const Chart_point& p, Chart_jacobian& D) const
+  {
+    double cu, su, cv, sv;
+    internal::cos_sin(p.y, cu, su);
+    internal::cos_sin(p.x, cv, sv);
+    const double e1 = m_q[E1], e2 = m_q[E2], a1 = m_q[A1], a2 = m_q[A2], a3 = m_q[A3];
+    double dCu, dSu, dCv, dSv; // derivatives of the signed powers with respect to their base
+    const double Cu = internal::signed_pow_and_derivative(cu, e1, dCu);
+    const double Su = internal::signed_pow_and_derivative(su, e1, dSu);
+    const double Cv = internal::signed_pow_and_derivative(cv, e2, dCv);
+    const double Sv = internal::signed_pow_and_derivative(sv, e2, dSv);
+    const double r1 = m_q[A4] + Cu, r2 = m_q[A5] + Cu;
+    // d/dv (around the axis), then d/du (around the tube)
+    D << -a1 * r1 * dCv * sv, -a1 * dCu * su * Cv,
+          a2 * r2 * dSv * cv, -a2 * dCu * su * Sv,
+          0.,                  a3 * dSu * cu;
+    return Point_3(a1 * (r1 * Cv), a2 * (r2 * Sv), a3 * Su); // rounded as in point()
+  }
 
   /// Unit outward normal: cross product of the two chart tangents, each
   /// rescaled by a positive factor that removes the |cos|^(e-1) and

@@ -7,6 +7,7 @@
 #include <CGAL/number_utils.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstddef>
 #include <random>
@@ -17,7 +18,8 @@ namespace Blended_shapes {
 
 /// \ingroup PkgBlendedShapeChecks
 /// A uniformly distributed point of chart `chart` of `primitive`
-/// (rejection sampling in the disk; the torus square otherwise).
+/// (rejection sampling in the disk; uniform in the torus square `[0, 2 pi)^2`;
+/// uniform in the tube strip, `x` in `[0, 2 pi)`, `y` in `[y_min, y_max)`).
 template <class Primitive, class RandomEngine>
 Chart_point random_chart_point(const Primitive& primitive, std::size_t chart, RandomEngine& rng)
 {
@@ -25,6 +27,11 @@ Chart_point random_chart_point(const Primitive& primitive, std::size_t chart, Ra
   std::uniform_real_distribution<double> unit(0., 1.);
   if(d.kind == Chart_kind::Torus)
     return Chart_point(chart, d.period() * unit(rng), d.period() * unit(rng));
+  if(d.kind == Chart_kind::Tube)
+  {
+    const double x = d.period() * unit(rng);
+    return Chart_point(chart, x, d.y_min + (d.y_max - d.y_min) * unit(rng));
+  }
   for(;;)
   {
     const double x = d.radius * (2. * unit(rng) - 1.), y = d.radius * (2. * unit(rng) - 1.);
@@ -135,6 +142,114 @@ Jacobian_check_report check_jacobian(const Primitive& primitive,
 }
 
 /// \ingroup PkgBlendedShapeChecks
+/// What check_chart_jacobian() found.
+struct Chart_jacobian_check_report
+{
+  std::size_t points_checked = 0;    ///< the number of chart points checked
+  std::size_t one_sided_columns = 0; ///< columns compared with a one-sided difference (the central stencil left the domain)
+  std::size_t skipped_columns = 0;   ///< columns not compared: no stencil of that step fits in the domain
+  /// largest relative column error |D_k - FD_k| / max(|FD_k|, floor) over all points and both columns
+  double max_relative_error = 0.;
+  int worst_column = -1;       ///< the column (0: d/dx, 1: d/dy) of the largest error, -1 if none
+  Chart_point worst_point;     ///< the chart point of the largest error
+  bool has_non_finite = false; ///< a NaN or infinity in D or in the point, at any of the points
+};
+
+/*!
+\ingroup PkgBlendedShapeChecks
+Compares the analytic chart Jacobian of any model of `BlendedShapePrimitive`
+(`point_and_chart_jacobian()`) with finite differences of `point()` at the
+given chart points.
+
+Column `k` (the derivative along chart coordinate `k`, `x` or `y`) is
+compared with the central difference (s(u + h e_k) - s(u - h e_k)) / 2h,
+h = `step` (chart coordinates are of order 1). Where that stencil leaves the
+chart's domain (`chart_domain().contains()`, e.g. at the rim of a disk) the
+second-order one-sided difference toward the inside is used, and where that
+leaves it too the column is skipped; periodic coordinates never leave it.
+The error of a column is relative to its finite-difference norm, with a
+floor of `1e-4` times the size of the shape (the largest |s(u)| over
+`points`), so that columns that vanish (e.g. at a pole with exponents above
+1) are compared in absolute terms.
+
+The map need not be differentiable everywhere (signed powers with exponents
+other than 1 at a zero cosine or sine, the pole of the ellipsoid, the pinch of
+a closed hole): near such a place the finite differences themselves are
+wrong, by about (h / d)^2 relative at a distance d from it. For an accuracy
+check give points away from them; `has_non_finite` is meaningful at every point.
+*/
+template <class Primitive>
+Chart_jacobian_check_report check_chart_jacobian(const Primitive& primitive,
+                                                 const std::vector<Chart_point>& points,
+                                                 double step = 1e-5)
+{
+  typedef typename Primitive::Chart_jacobian Chart_jacobian;
+  typedef typename Primitive::Point_3 Point_3;
+  auto coords = [](const Point_3& p) {
+    return std::array<double, 3>{{CGAL::to_double(p.x()), CGAL::to_double(p.y()), CGAL::to_double(p.z())}};
+  };
+  Chart_jacobian_check_report report;
+  double size = 0.;
+  for(const Chart_point& u : points)
+  {
+    const std::array<double, 3> s = coords(primitive.point(u));
+    const double n = std::sqrt(s[0] * s[0] + s[1] * s[1] + s[2] * s[2]);
+    if(std::isfinite(n))
+      size = (std::max)(size, n);
+  }
+  const double floor = 1e-4 * size + 1e-300;
+  const double h = step;
+  Chart_jacobian D;
+  for(const Chart_point& u : points)
+  {
+    const std::array<double, 3> s = coords(primitive.point_and_chart_jacobian(u, D));
+    ++report.points_checked;
+    if(!D.allFinite() || !std::isfinite(s[0] + s[1] + s[2]))
+      report.has_non_finite = true;
+    const Chart_domain dom = primitive.chart_domain(u.chart);
+    for(int k = 0; k < 2; ++k)
+    {
+      auto at = [&](double t) { return k == 0 ? Chart_point(u.chart, u.x + t, u.y) : Chart_point(u.chart, u.x, u.y + t); };
+      auto inside = [&](double t) { const Chart_point v = at(t); return dom.contains(v.x, v.y); };
+      double offsets[3], w[3];
+      if(inside(-h) && inside(h))
+      { offsets[0] = -h; offsets[1] = 0.; offsets[2] = h; w[0] = -0.5 / h; w[1] = 0.; w[2] = 0.5 / h; }
+      else if(inside(h) && inside(2. * h))
+      { offsets[0] = 0.; offsets[1] = h; offsets[2] = 2. * h; w[0] = -1.5 / h; w[1] = 2. / h; w[2] = -0.5 / h; }
+      else if(inside(-h) && inside(-2. * h))
+      { offsets[0] = 0.; offsets[1] = -h; offsets[2] = -2. * h; w[0] = 1.5 / h; w[1] = -2. / h; w[2] = 0.5 / h; }
+      else
+      { ++report.skipped_columns; continue; }
+      if(offsets[0] == 0.)
+        ++report.one_sided_columns;
+      double fd[3] = {0., 0., 0.};
+      for(int j = 0; j < 3; ++j)
+      {
+        if(w[j] == 0.)
+          continue;
+        const std::array<double, 3> sj = coords(primitive.point(at(offsets[j])));
+        for(int r = 0; r < 3; ++r)
+          fd[r] += w[j] * sj[std::size_t(r)];
+      }
+      double diff = 0., norm = 0.;
+      for(int r = 0; r < 3; ++r)
+      {
+        diff += (D(r, k) - fd[r]) * (D(r, k) - fd[r]);
+        norm += fd[r] * fd[r];
+      }
+      const double err = std::sqrt(diff) / (std::max)(std::sqrt(norm), floor);
+      if(!(err <= report.max_relative_error)) // also catches NaN
+      {
+        report.max_relative_error = std::isfinite(err) ? err : HUGE_VAL;
+        report.worst_column = k;
+        report.worst_point = u;
+      }
+    }
+  }
+  return report;
+}
+
+/// \ingroup PkgBlendedShapeChecks
 /// What check_chart_consistency() found.
 struct Chart_consistency_report
 {
@@ -153,7 +268,8 @@ for every point that another chart also covers (`to_chart()` succeeds) checks
 that both give the same surface point and normal, that going back lands on
 the starting chart point, and that both have the same canonical
 representative. Periodic charts are also checked against a shift by one
-period in each coordinate. Distances are relative to the largest |s(u)| seen.
+period in each periodic coordinate (both for a torus, `x` only for a tube).
+Distances are relative to the largest |s(u)| seen.
 */
 template <class Primitive>
 Chart_consistency_report check_chart_consistency(const Primitive& primitive,
@@ -189,13 +305,16 @@ Chart_consistency_report check_chart_consistency(const Primitive& primitive,
         const double e = ok ? std::hypot(back.x - p.x, back.y - p.y) : HUGE_VAL;
         report.max_round_trip_error = (std::max)(report.max_round_trip_error, e);
       }
-      if(d.period() > 0.)
-        for(int k = 0; k < 2; ++k)
-        {
-          Chart_point q = p;
-          (k == 0 ? q.x : q.y) += d.period();
-          pairs.push_back(Pair{p, q});
-        }
+      // periodic coordinates only: the tube's y boundaries are not seams
+      for(int k = 0; k < 2; ++k)
+      {
+        const double period = (k == 0) ? d.x_period() : d.y_period();
+        if(!(period > 0.))
+          continue;
+        Chart_point q = p;
+        (k == 0 ? q.x : q.y) += period;
+        pairs.push_back(Pair{p, q});
+      }
     }
   }
   for(const Pair& pq : pairs)
