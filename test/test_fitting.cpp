@@ -201,7 +201,11 @@ void test_equivariance(std::mt19937_64& rng)
   // A full view with exponents <= 1. Known limitation: with exponents above 1
   // the map flattens on the equator and the poles, where the foot-point
   // projection converges slowly; rounding differences between the two runs
-  // then change where they stop, by up to about 5e-5 of the size.
+  // then change where they stop, by up to about 1e-4 of the diagonal. The
+  // analytic chart Jacobian made this rarer but did not remove it: over 48
+  // random full views with exponents in [1, 2], 16 missed this test's 1e-6
+  // tolerances (28 with the former finite-difference projection), and 40
+  // projection steps instead of 10 did not help.
   Model<K> truth = random_superellipsoid<K>(rng);
   Eigen::VectorXd q = truth.parameters();
   q[10] = (std::min)(q[10], 1.);

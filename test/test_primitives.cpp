@@ -236,11 +236,18 @@ struct Wrong_chart_jacobian_ellipsoid : BS::Superquadric_ellipsoid<K>
 template <class K>
 void test_chart_jacobian_special_cases(std::mt19937_64& rng)
 {
-  // The capped derivative of the signed power: finite at 0, the limit for e >= 1.
-  BS_CHECK(std::isfinite(BS::internal::signed_pow_derivative(0., 0.01)) &&
-             BS::internal::signed_pow_derivative(0., 0.01) > 1e12, "cap at e = 0.01");
-  BS_CHECK(BS::internal::signed_pow_derivative(0., 1.) == 1. && BS::internal::signed_pow_derivative(0., 2.) == 0.,
-           "limits at e >= 1");
+  // The derivative of the signed power: within 1e-6 of 0 the one at 1e-6
+  // (a cap for e < 1, a non-zero slope for e > 1), exact elsewhere.
+  const double floor = BS::internal::signed_power_derivative_floor;
+  for(double e : {0.01, 0.3, 1., 1.5, 2.})
+  {
+    const double d0 = BS::internal::signed_pow_derivative(0., e);
+    BS_CHECK(std::isfinite(d0) && d0 > 0. && std::abs(d0 - e * std::pow(floor, e - 1.)) <= 1e-15 * d0 &&
+               BS::internal::signed_pow_derivative(-0.3 * floor, e) == d0,
+             "derivative of the signed power at 0, e = " << e << ": " << d0);
+    BS_CHECK(std::abs(BS::internal::signed_pow_derivative(-1e-3, e) - e * std::pow(1e-3, e - 1.)) <=
+               1e-14 * e * std::pow(1e-3, e - 1.), "derivative of the signed power at -1e-3, e = " << e);
+  }
   double d = 0.;
   const double v = BS::internal::signed_pow_and_derivative(-0.3, 0.7, d);
   BS_CHECK(std::abs(v + std::pow(0.3, 0.7)) < 1e-15 && std::abs(d - 0.7 * std::pow(0.3, -0.3)) < 1e-14,

@@ -163,12 +163,14 @@ public:
   /// `D = [ds/dx, ds/dy]` at `p` (`x`, `y` the chart coordinates of `p`),
   /// written to `D`. Exact (analytic); the foot-point projection
   /// (`CGAL::Blended_shapes::refine_closest_point()`) takes its Gauss-Newton
-  /// steps with it. Where the map is not differentiable (a signed power with
-  /// an exponent other than 1 at a zero cosine, the pole of a superquadric
-  /// ellipsoid, the pinch of a closed hole) `D` holds a one-sided or limit
-  /// value, or a finite cap where the derivative is infinite (the package's
-  /// models floor |c| at the machine epsilon in e |c|^(e-1)), but never a
-  /// NaN or an infinity.
+  /// steps with it. Where the map is not differentiable or its chart
+  /// Jacobian loses rank (a signed power with an exponent other than 1 at a
+  /// zero cosine, the pole of a superquadric ellipsoid, the pinch of a closed
+  /// hole) `D` holds a one-sided value or a finite cap, never a NaN or an
+  /// infinity. The package's models take e |c|^(e-1) at |c| = 1e-6 within
+  /// 1e-6 of a zero `c = 0`: a cap where it is infinite (e < 1), a small
+  /// slope where it vanishes (e > 1), so that the projection can step off
+  /// such a place.
   Point_3 point_and_chart_jacobian(const CGAL::Blended_shapes::Chart_point& p, Chart_jacobian& D) const;
 
   /// The unit outward normal at `p` (see the chart orientation above). Defined

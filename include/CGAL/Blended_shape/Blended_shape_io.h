@@ -550,8 +550,9 @@ private:
     const Value& components = array(field(doc, "", "components"), "components");
     if(components.size() == 0)
       fail("components", "expected at least one component (the root)");
-    // Far beyond any fitted model; keeps the quadratic bookkeeping of Blended_shape fast.
-    const std::size_t max_count = 10000;
+    // Far beyond any fitted model; bounds the loading time (Blended_shape
+    // recomputes its layout, in quadratic time, on every append).
+    const std::size_t max_count = 1000;
     if(components.size() > max_count)
       fail("components", std::to_string(components.size()) + " components; at most " + std::to_string(max_count) +
                            " are supported");
@@ -815,7 +816,7 @@ void write_blended_shape_json(std::ostream& out, const Blended_shape<GeomTraits>
 \ingroup PkgBlendedShapeIO
 
 Reads a model written by write_blended_shape_json() from `in` (all of it, at
-most 64 MiB). Everything is checked: the JSON syntax, the format name and
+most 64 MiB, at most 1000 components and 2000 blends). Everything is checked: the JSON syntax, the format name and
 version, field names and types, indices, parameter bounds, the regions, and
 the structure (blends, holes, hierarchy order). The `"hierarchy"` field is
 ignored: it is derived from the blends.

@@ -10,6 +10,7 @@
 
 #include <Eigen/Dense>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <vector>
@@ -147,8 +148,9 @@ Closest_point_locator::locate()): at most `max_iterations` safeguarded
 Gauss-Newton steps on the chart coordinates, with the analytic chart
 Jacobian (`point_and_chart_jacobian()`: one evaluation per step, which also
 gives the point), each kept only if it brings the model point closer (the
-step is halved up to three times otherwise). A step that leaves a chart is
-taken in the canonical chart of its end point.
+step is halved up to three times otherwise, and where the chart Jacobian is
+ill-conditioned, retried with a strong Levenberg damping). A step that leaves
+a chart is taken in the canonical chart of its end point.
 
 The tessellation is a piecewise linear approximation: a closest point found
 on it maps back to a chart point a little off the true foot point (by the
@@ -172,33 +174,45 @@ Chart_point refine_closest_point(const Model& model, const Eigen::Vector3d& p, C
   double d2 = (p - x).squaredNorm();
   for(int it = 0; it < max_iterations && d2 > 0.; ++it)
   {
-    // Levenberg-regularized: where exponents above 1 flatten the map (its chart
-    // Jacobian loses rank on the poles and axes) the step still moves along
-    // the direction that is left.
-    Eigen::Matrix2d A = J.transpose() * J;
-    const double t = A.trace();
+    const Eigen::Matrix2d JtJ = J.transpose() * J;
+    const double t = JtJ.trace();
     if(!(t > 0.) || !std::isfinite(t))
       break;
-    A.diagonal().array() += 1e-10 * t;
-    Eigen::Vector2d step = A.ldlt().solve(J.transpose() * (p - x));
-    if(!(step.squaredNorm() > 1e-22)) // at the foot point, to the accuracy that matters
-      break;
-    bool improved = false;
-    for(int half = 0; half < 4 && !improved; ++half, step *= 0.5)
+    const Eigen::Vector2d g = J.transpose() * (p - x);
+    // Levenberg-regularized: where exponents above 1 flatten the map (its chart
+    // Jacobian loses rank on the poles and axes) the step still moves along
+    // the direction that is left. When one column is much shorter than the
+    // other (next to such a place) and the step fails, it is retried with a
+    // strong damping of that direction: its Gauss-Newton step is then far too
+    // long, and would otherwise take the good step along the other one with it.
+    const bool ill_conditioned = (std::min)(JtJ(0, 0), JtJ(1, 1)) < 1e-3 * t;
+    bool improved = false, converged = false;
+    for(int level = 0; level < (ill_conditioned ? 2 : 1) && !improved; ++level)
     {
-      Chart_point v(u.chart, u.x + step[0], u.y + step[1]);
-      const Chart_domain dom = model.chart_domain(v.chart);
-      if(!dom.contains(v.x, v.y))
-        continue;
-      v = model.canonical_chart_point(v);
-      const Eigen::Vector3d xv = eval(v, Jv); // the Jacobian of the next step, if this one is kept
-      const double dv = (p - xv).squaredNorm();
-      if(dv < d2)
+      Eigen::Matrix2d A = JtJ;
+      A.diagonal().array() += (level == 0 ? 1e-10 : 1e-3) * t;
+      Eigen::Vector2d step = A.ldlt().solve(g);
+      if(!(step.squaredNorm() > 1e-22)) // at the foot point, to the accuracy that matters
       {
-        u = v; x = xv; d2 = dv; J = Jv; improved = true;
+        converged = true;
+        break;
+      }
+      for(int half = 0; half < 4 && !improved; ++half, step *= 0.5)
+      {
+        Chart_point v(u.chart, u.x + step[0], u.y + step[1]);
+        const Chart_domain dom = model.chart_domain(v.chart);
+        if(!dom.contains(v.x, v.y))
+          continue;
+        v = model.canonical_chart_point(v);
+        const Eigen::Vector3d xv = eval(v, Jv); // the Jacobian of the next step, if this one is kept
+        const double dv = (p - xv).squaredNorm();
+        if(dv < d2)
+        {
+          u = v; x = xv; d2 = dv; J = Jv; improved = true;
+        }
       }
     }
-    if(!improved)
+    if(!improved || converged)
       break;
   }
   return u;

@@ -331,9 +331,9 @@ public:
   /// `D = [ds/dx, ds/dy]` there: the toroid's chart Jacobian `[ds/dv, ds/du]`
   /// at toroid_chart_point(p), chained with `u = (1 + r/2) pi`, and on the
   /// Two_disks domain with the polar map of to_domain() (`theta`, `r = +-rho`).
-  /// Finite everywhere (the toroid's signed power derivatives are capped).
-  /// Within internal::signed_power_derivative_floor of a disk centre, where
-  /// the polar map is not differentiable (the pinch is a cusp), column `k` is
+  /// Finite everywhere (see the toroid's). Within 1e-6
+  /// (internal::signed_power_derivative_floor) of a disk centre, where the
+  /// polar map is not differentiable (the pinch is a cusp), column `k` is
   /// the one-sided derivative along the positive chart axis `k`, from the
   /// centre outward.
   Point_3 point_and_chart_jacobian(const Chart_point& p, Chart_jacobian& D) const

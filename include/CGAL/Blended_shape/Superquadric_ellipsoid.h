@@ -233,12 +233,13 @@ public:
   void jacobian(const Chart_point& p, Jacobian& J) const { point_and_jacobian(p, J); }
 
   /// The surface point at `p` (the same as point()), and the chart Jacobian
-  /// `D = [ds/dx, ds/dy]` there, analytic. Where a signed power is not
-  /// differentiable (a zero cosine or sine with an exponent below 1) its
-  /// derivative is capped (internal::signed_power_derivative_floor), so `D`
-  /// is always finite. At the pole (`rho = 0`) the columns are the partial
-  /// derivatives along the chart axes, which exist there (the map is
-  /// differentiable at the pole only for `e1 > 1` or `e1 = e2 = 1`).
+  /// `D = [ds/dx, ds/dy]` there, analytic. Within 1e-6 of a zero of a cosine
+  /// or sine that a signed power is applied to, the power's derivative is
+  /// taken at 1e-6 (internal::signed_power_derivative_floor: a finite cap for
+  /// an exponent below 1, a small non-zero slope above 1), so `D` is always
+  /// finite. At the pole (`rho = 0`), where the map is differentiable only for
+  /// `e1 > 1` or `e1 = e2 = 1`, the columns are the partial derivatives along
+  /// the chart axes (`+x` and `+y`), with that same floor.
   Point_3 point_and_chart_jacobian(const Chart_point& p, Chart_jacobian& D) const
   {
     const double h = 0.5 * M_PI; // d eta / d rho, up to sign

@@ -154,10 +154,11 @@ public:
   void jacobian(const Chart_point& p, Jacobian& J) const { point_and_jacobian(p, J); }
 
   /// The surface point at `p` (the same as point()), and the chart Jacobian
-  /// `D = [ds/dx, ds/dy] = [ds/dv, ds/du]` there, analytic. Where a signed
-  /// power is not differentiable (a zero cosine or sine with an exponent
-  /// below 1) its derivative is capped (internal::signed_power_derivative_floor),
-  /// so `D` is always finite.
+  /// `D = [ds/dx, ds/dy] = [ds/dv, ds/du]` there, analytic. Within 1e-6 of a
+  /// zero of a cosine or sine that a signed power is applied to, the power's
+  /// derivative is taken at 1e-6 (internal::signed_power_derivative_floor: a
+  /// finite cap for an exponent below 1, a small non-zero slope above 1), so
+  /// `D` is always finite.
   Point_3 point_and_chart_jacobian(const Chart_point& p, Chart_jacobian& D) const
   {
     double cu, su, cv, sv;

@@ -9,26 +9,31 @@ namespace CGAL {
 namespace Blended_shapes {
 namespace internal {
 
-/// The floor on |c| in the derivative e |c|^(e-1) of a signed power with
-/// e < 1 (signed_pow_derivative(), Signed_power::d_base), which is infinite
-/// at c = 0: below the floor it is taken at |c| = floor, a finite cap. The
-/// floor is the machine epsilon: chart coordinates are of order 1, so one
-/// unit in the last place of a chart coordinate moves a cosine or sine near
-/// its zero by about this much, and e floor^(e-1) is the slope of the map
-/// across that one representable step, the steepest slope double precision
-/// can observe (3.1e13 at e = 0.01, 1.2e13 at e = 0.1, 3.4e7 at e = 0.5).
-/// For e >= 1 the derivative is finite and exact everywhere, with its limit
-/// at c = 0 (1 at e = 1, 0 above), like the limits the parameter Jacobian
-/// uses at c = 0.
-constexpr double signed_power_derivative_floor = 2.220446049250313e-16;
+/// The floor on |c| in the derivative e |c|^(e-1) of a signed power
+/// sign(c) |c|^e (signed_pow_derivative()), used by the chart Jacobians:
+/// within this distance of a zero of the cosine or sine, the derivative is
+/// the one at |c| = floor. For e < 1 the exact derivative is infinite at 0:
+/// this is a finite cap (e floor^(e-1): 4.8e3 at e = 0.3, 2.5e4 at e = 0.1,
+/// 8.7e3 at e = 0.01). For e > 1 it is 0 at 0, where the chart Jacobian
+/// loses rank: this is a small positive slope instead. Either way it is the
+/// slope of the map over a chart step of 1e-6, the step of the central
+/// differences that the foot-point projection (refine_closest_point()) used
+/// before it had analytic chart Jacobians. Mesh start points often lie
+/// exactly on such a locus (the chart axes, the equator, a pole), and that
+/// projection needs such a slope to step off it: with the exact derivative
+/// (0 for e > 1) Gauss-Newton cannot leave the locus, and with a cap at the
+/// machine epsilon (2.7e10 at e = 0.3) its first step falls under its stopping
+/// threshold. At |c| >= floor, and for e = 1 everywhere, the derivative is exact.
+/// The parameter Jacobian, which has finite limits at c = 0, uses them instead
+/// (Signed_power).
+constexpr double signed_power_derivative_floor = 1e-6;
 
 /// e |c|^(e-1), the derivative of sign(c) |c|^e with respect to c (even in
-/// c, never negative); for e < 1, |c| is floored at
-/// signed_power_derivative_floor so that it is finite everywhere.
+/// c, never negative), with |c| floored at signed_power_derivative_floor:
+/// finite everywhere, and positive.
 inline double signed_pow_derivative(double c, double e)
 {
-  const double a = std::abs(c);
-  return e * std::pow(e < 1. ? (std::max)(a, signed_power_derivative_floor) : a, e - 1.);
+  return e * std::pow((std::max)(std::abs(c), signed_power_derivative_floor), e - 1.);
 }
 
 /// The superquadric "signed power" sign(c) |c|^e and its derivative with
@@ -53,8 +58,9 @@ struct Signed_power
 };
 
 /// sign(c) |c|^e, returned, and its derivative with respect to c, written
-/// to `d`, as signed_pow_derivative() (capped for e < 1), for the chart
-/// Jacobians: one pow for both.
+/// to `d`, as signed_pow_derivative() (|c| floored at
+/// signed_power_derivative_floor), for the chart Jacobians: one pow for both
+/// away from the zeros.
 inline double signed_pow_and_derivative(double c, double e, double& d)
 {
   const double a = std::abs(c);
