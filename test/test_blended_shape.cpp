@@ -76,6 +76,26 @@ Shape<K> sphere(double e1 = 0.8, double e2 = 1.1)
   return Shape<K>(BS::Superquadric_ellipsoid<K>(1.0, 0.9, 1.1, e1, e2));
 }
 
+// A gradual part on chart 1, tilted and off-centre (it joins shapes that differ).
+template <class K>
+void add_tilted_part(Shape<K>& s)
+{
+  s.add_part(0, 1, Region::make_parameters(-0.2, 0.25, 0.32, 0.28, -0.4, 0.85, 1.), 0.07,
+             BS::Superquadric_ellipsoid<K>(0.5, 0.45, 0.8, 0.6, 1.2), "superquadric_ellipsoid",
+             Eigen::Vector3d(0.1, -0.2, -0.9), Eigen::Vector4d(0.95, 0.2, -0.1, 0.05), 0,
+             Region::make_parameters(0.05, 0., 0.55, 0.5, 0.1, 1., 0.), 0.1);
+}
+
+// A unit sphere with a closed hole from near the north pole to near the south pole.
+template <class K>
+Shape<K> sphere_with_pole_hole()
+{
+  Shape<K> s = sphere<K>(1., 1.);
+  s.add_hole(BS::Shape_point(0, BS::Chart_point(0, 0.05, 0.)), BS::Shape_point(0, BS::Chart_point(1, 0., 0.05)), 0.3,
+             0.08, 0.1);
+  return s;
+}
+
 // Configurations used by several tests.
 template <class K>
 std::map<std::string, std::function<Shape<K>()>> configurations()
@@ -95,10 +115,7 @@ std::map<std::string, std::function<Shape<K>()>> configurations()
   };
   m["part"] = [] {
     Shape<K> s = sphere<K>();
-    s.add_part(0, 1, Region::make_parameters(-0.2, 0.25, 0.32, 0.28, -0.4, 0.85, 1.), 0.07,
-               BS::Superquadric_ellipsoid<K>(0.5, 0.45, 0.8, 0.6, 1.2), "superquadric_ellipsoid",
-               Eigen::Vector3d(0.1, -0.2, -0.9), Eigen::Vector4d(0.95, 0.2, -0.1, 0.05), 0,
-               Region::make_parameters(0.05, 0., 0.55, 0.5, 0.1, 1., 0.), 0.1);
+    add_tilted_part(s);
     set_parameter(s, "b0.h", 0.4);
     return s;
   };
@@ -108,17 +125,12 @@ std::map<std::string, std::function<Shape<K>()>> configurations()
     perturb_component(s, 1, 0.6);
     s.split(1, 0, Region::make_parameters(0.2, -0.05, 0.13, 0.11, -0.2, 0.7, 0.), 0.04);
     perturb_component(s, 2, 0.5);
-    s.add_part(0, 1, Region::make_parameters(-0.2, 0.25, 0.32, 0.28, -0.4, 0.85, 1.), 0.07,
-               BS::Superquadric_ellipsoid<K>(0.5, 0.45, 0.8, 0.6, 1.2), "superquadric_ellipsoid",
-               Eigen::Vector3d(0.1, -0.2, -0.9), Eigen::Vector4d(0.95, 0.2, -0.1, 0.05), 0,
-               Region::make_parameters(0.05, 0., 0.55, 0.5, 0.1, 1., 0.), 0.1);
+    add_tilted_part(s);
     set_parameter(s, "b2.h", 0.6);
     return s;
   };
   m["hole_disks"] = [] {
-    Shape<K> s = sphere<K>(1., 1.);
-    s.add_hole(BS::Shape_point(0, BS::Chart_point(0, 0.05, 0.)), BS::Shape_point(0, BS::Chart_point(1, 0., 0.05)), 0.3,
-               0.08, 0.1);
+    Shape<K> s = sphere_with_pole_hole<K>();
     set_parameter(s, "b0.h", 0.5);
     set_parameter(s, "b1.h", 0.3);
     set_parameter(s, "b0.w", 0.9);
@@ -126,9 +138,7 @@ std::map<std::string, std::function<Shape<K>()>> configurations()
     return s;
   };
   m["hole_tube"] = [] {
-    Shape<K> s = sphere<K>(1., 1.);
-    s.add_hole(BS::Shape_point(0, BS::Chart_point(0, 0.05, 0.)), BS::Shape_point(0, BS::Chart_point(1, 0., 0.05)), 0.3,
-               0.08, 0.1);
+    Shape<K> s = sphere_with_pole_hole<K>();
     set_parameter(s, "b0.h", 0.);
     set_parameter(s, "b1.h", 0.);
     s.switch_hole_to_tube(0);

@@ -140,7 +140,7 @@ public:
       const double s = (m_end == 0) ? -1. : 1.;
       if(J)
         *J << 0., s, (m_end == 0 ? -m_delta : m_delta), 0.;
-      return Chart_point(0, wrap(s * phi), (m_end == 0) ? rho : -rho);
+      return Chart_point(0, internal::wrap_angle(s * phi), (m_end == 0) ? rho : -rho);
     }
     const double c = std::cos(phi), sn = std::sin(phi);
     if(J)
@@ -217,7 +217,7 @@ public:
       phi = (rho > 0.) ? std::atan2(u.y, u.x) : 0.;
     }
     const double d = (1. - m_delta - rho) / m_delta;
-    loc.theta = wrap(phi - m_phase);
+    loc.theta = internal::wrap_angle(phi - m_phase);
     if(d <= 1.)
     {
       loc.side = (d >= -1.) ? Region_side::Strip : Region_side::Discarded;
@@ -232,15 +232,6 @@ public:
   }
 
 private:
-  static double wrap(double t)
-  {
-    const double two_pi = 2. * M_PI;
-    t = std::fmod(t, two_pi);
-    if(t < 0.)
-      t += two_pi;
-    return (t >= two_pi) ? 0. : t + 0.;
-  }
-
   Kind m_kind = Ellipse;
   std::optional<Ellipse_blending_region> m_ellipse;
   int m_end = 0;

@@ -1423,7 +1423,7 @@ public:
         kc.segment = i;
         kc.gamma = gc;
         kc.t = vn / P.norm();
-        kc.theta = wrap_angle(theta_at(i) + gc * segment_theta_span(i));
+        kc.theta = internal::wrap_angle(theta_at(i) + gc * segment_theta_span(i));
         if(!best || std::abs(kc.gamma - 0.5) < std::abs(best->gamma - 0.5))
           best = kc;
       }
@@ -1556,15 +1556,6 @@ private:
   }
 
   static double cross(const Vector_2& a, const Vector_2& b) { return a.x() * b.y() - a.y() * b.x(); }
-
-  static double wrap_angle(double t)
-  {
-    const double two_pi = 2. * M_PI;
-    t = std::fmod(t, two_pi);
-    if(t < 0.)
-      t += two_pi;
-    return (t >= two_pi) ? 0. : t;
-  }
 
   Blending_region build(const Parameter_vector& q) const
   {

@@ -86,6 +86,21 @@ struct Chart_domain
   }
 };
 
+namespace internal {
+
+/// An angle reduced to [0, 2 pi), with -0 turned into 0 (periodic chart
+/// coordinates and strip angles are compared and stored in this range).
+inline double wrap_angle(double t)
+{
+  const double two_pi = 2. * M_PI;
+  t = std::fmod(t, two_pi);
+  if(t < 0.)
+    t += two_pi;
+  return (t >= two_pi) ? 0. : t + 0.;
+}
+
+} // namespace internal
+
 } // namespace Blended_shapes
 } // namespace CGAL
 

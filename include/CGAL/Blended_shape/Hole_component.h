@@ -251,7 +251,7 @@ public:
       if(rho == 0.)
         return Chart_point(0, 0., 0.);
       const double theta = (p.chart == 0) ? std::atan2(-p.y, p.x) : std::atan2(p.y, p.x);
-      return Chart_point(0, wrap(theta), (p.chart == 0) ? rho : -rho);
+      return Chart_point(0, internal::wrap_angle(theta), (p.chart == 0) ? rho : -rho);
     }
     if(p.chart != 0)
       throw std::invalid_argument("Hole_component::to_domain: a chart point of the Tube domain has chart 0");
@@ -306,7 +306,7 @@ public:
   Chart_point canonical_chart_point(const Chart_point& p) const
   {
     if(m_domain == Hole_domain::Tube)
-      return Chart_point(p.chart, wrap(p.x), p.y);
+      return Chart_point(p.chart, internal::wrap_angle(p.x), p.y);
     return p;
   }
   /// @}
@@ -356,7 +356,7 @@ public:
       // theta is constant on each, r = sr t.
       Chart_jacobian Dx, Dy;
       m_toroid.point_and_chart_jacobian(Chart_point(0, 0., M_PI), Dx);
-      m_toroid.point_and_chart_jacobian(Chart_point(0, wrap(-sr * h), M_PI), Dy);
+      m_toroid.point_and_chart_jacobian(Chart_point(0, internal::wrap_angle(-sr * h), M_PI), Dy);
       D.col(0) = (sr * h) * Dx.col(1);
       D.col(1) = (sr * h) * Dy.col(1);
       return s;
@@ -378,15 +378,6 @@ public:
   /// @}
 
 private:
-  static double wrap(double t)
-  {
-    const double period = 2. * M_PI;
-    double w = std::fmod(t, period);
-    if(w < 0.)
-      w += period;
-    return (w >= period) ? 0. : w + 0.; // + 0. turns -0 into 0
-  }
-
   // The toroid's parameter table, the hole starting closed.
   static const std::array<Parameter_info, number_of_parameters>& table()
   {

@@ -112,7 +112,7 @@ public:
   /// `p` with both coordinates reduced to [0, 2 pi).
   Chart_point canonical_chart_point(const Chart_point& p) const
   {
-    return Chart_point(0, wrap(p.x), wrap(p.y));
+    return Chart_point(0, internal::wrap_angle(p.x), internal::wrap_angle(p.y));
   }
   /// @}
 
@@ -218,15 +218,6 @@ public:
   /// @}
 
 private:
-  static double wrap(double t)
-  {
-    const double period = 2. * M_PI;
-    double w = std::fmod(t, period);
-    if(w < 0.)
-      w += period;
-    return (w >= period) ? 0. : w;
-  }
-
   static const std::array<Parameter_info, number_of_parameters>& table()
   {
     static const std::array<Parameter_info, number_of_parameters> t = {{
