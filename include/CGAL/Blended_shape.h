@@ -10,6 +10,11 @@
 #include <CGAL/Blended_shape/Hole_component.h>
 #include <CGAL/Blended_shape/Blending_function.h>
 #include <CGAL/Blended_shape/Blending_region.h>
+#include <CGAL/Blended_shape/Component_shape.h>
+#include <CGAL/Blended_shape/Blend.h>
+#include <CGAL/Blended_shape/Blended_shape.h>
+#include <CGAL/Blended_shape/Blended_shape_mesh.h>
+#include <CGAL/Blended_shape/Blended_shape_io.h>
 #include <CGAL/Blended_shape/check_primitive.h>
 #include <CGAL/Blended_shape/Input_error.h>
 #include <CGAL/Blended_shape/check_points.h>
@@ -24,5 +29,7 @@
 #include <CGAL/Blended_shape/sample_model.h>
 #include <CGAL/Blended_shape/Range_scan_simulator.h>
 #include <CGAL/Blended_shape/CAD_objects.h>
+#include <CGAL/Blended_shape/Quotient_domain.h>
+#include <CGAL/Blended_shape/Blending_hierarchy.h>
 
 #endif // CGAL_BLENDED_SHAPE_H

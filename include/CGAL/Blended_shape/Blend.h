@@ -8,6 +8,7 @@
 
 #include <Eigen/Core>
 
+#include <algorithm>
 #include <cmath>
 #include <cstddef>
 #include <limits>
@@ -218,10 +219,10 @@ public:
     }
     const double d = (1. - m_delta - rho) / m_delta;
     loc.theta = internal::wrap_angle(phi - m_phase);
-    if(d <= 1.)
+    if(d <= 1. + 1e-12) // the strip's edges, up to rounding, are in the strip (as for ellipse regions)
     {
-      loc.side = (d >= -1.) ? Region_side::Strip : Region_side::Discarded;
-      loc.d = d;
+      loc.side = (d >= -1. - 1e-12) ? Region_side::Strip : Region_side::Discarded;
+      loc.d = (std::max)(-1., (std::min)(1., d));
     }
     else if(!tube)
     {

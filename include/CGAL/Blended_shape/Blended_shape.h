@@ -354,7 +354,13 @@ public:
       const Added_side& A = B.added_side();
       Chart_point v;
       if(!k.shape().to_chart(q.u, A.chart(tube), v))
+      {
+        // Not in the region's chart: outside an ellipse region, whose inside
+        // is all the added component keeps; a hole end's other disk is not its business.
+        if(A.kind() == Added_side::Ellipse)
+          return std::nullopt;
         continue;
+      }
       const Added_side::Location loc = A.locate(v, tube);
       const Ellipse_blending_region& R = B.base_region();
       if(loc.side == Region_side::Strip)
@@ -1025,14 +1031,21 @@ private:
       Eigen::Matrix<double, 2, 7> du2 = Eigen::Matrix<double, 2, 7>::Zero();
       if(A.location.side == Region_side::Strip)
       {
-        const auto g = R.strip_coordinates_and_gradient(v);
-        const Strip_coordinates& sc = g ? g->coordinates : A.location.coordinates;
+        // The location found above carries the strip coordinates: no second Newton inversion.
+        const Strip_coordinates& sc = A.location.coordinates;
         u2 = B.added_side().strip_point(-sc.d, sc.theta, tube, &Jb);
-        if(g && J)
-          du2 = -Jb.col(0) * g->d_gradient.transpose() + Jb.col(1) * g->theta_gradient.transpose();
+        if(J)
+        {
+          const auto g = R.strip_coordinates_and_gradient(sc);
+          du2 = -Jb.col(0) * g.d_gradient.transpose() + Jb.col(1) * g.theta_gradient.transpose();
+        }
       }
       else
       {
+        // Canonical points are never on the discarded side of a cut-and-glue
+        // blend (canonical_point() locates them the same way): only disks of
+        // gradual blends get here.
+        CGAL_assertion(B.is_gradual());
         const std::optional<Core_coordinates> k = R.core_coordinates(v, -1.);
         if(!k)
           break; // on the boundary of the disk to rounding: alpha = h, beta at the strip's edge

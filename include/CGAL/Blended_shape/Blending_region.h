@@ -562,8 +562,12 @@ public:
       if(!segment_may_contain(i, u))
         continue;
       double d, gamma;
-      if(!solve_in_segment(i, u, d, gamma) || !(std::abs(d) <= 1.))
+      // Points on the strip's edges (|d| = 1, e.g. made by strip_point(+-1, theta))
+      // come out a rounding error beyond: they belong to the strip, where
+      // alpha and beta are continuous, not to the side beyond it.
+      if(!solve_in_segment(i, u, d, gamma) || !(std::abs(d) <= 1. + 1e-12))
         continue;
+      d = (std::max)(-1., (std::min)(1., d));
       // A point on a junction may come out a rounding error beyond [0, 1] in
       // both neighbours: accept the smallest such excess.
       const double excess = (std::max)({0., -gamma, gamma - 1.});
@@ -1488,10 +1492,16 @@ public:
     const std::optional<Strip_coordinates> c = m_region->strip_coordinates(u);
     if(!c)
       return std::nullopt;
+    return strip_coordinates_and_gradient(*c);
+  }
+
+  /// The same from strip coordinates already found (e.g. by locate()), without locating again.
+  Strip_coordinates_and_gradient<Parameter_vector> strip_coordinates_and_gradient(const Strip_coordinates& c) const
+  {
     Strip_coordinates_and_gradient<Parameter_vector> r;
-    r.coordinates = *c;
-    const Eigen::Matrix<double, 2, 5> G = shape_gradient(*c);
-    const double dtheta = segment_theta_span(c->segment);
+    r.coordinates = c;
+    const Eigen::Matrix<double, 2, 5> G = shape_gradient(c);
+    const double dtheta = segment_theta_span(c.segment);
     r.d_gradient.setZero();
     r.theta_gradient.setZero();
     r.d_gradient.head<5>() = G.row(0).transpose();

@@ -12,6 +12,7 @@
 #include <cmath>
 #include <sstream>
 #include <stdexcept>
+#include <string>
 
 namespace CGAL {
 namespace Blended_shapes {
@@ -177,7 +178,10 @@ public:
     }
     const double rho = std::hypot(p.x, p.y);
     const double other_rho = 2. - rho;
-    if(rho > 1. + m_margin || other_rho > 1. + m_margin)
+    // Chart-mesh vertices on the domain's rim have rho = 1 + margin up to
+    // rounding (hypot of cos/sin products): accept them.
+    const double limit = 1. + m_margin + 1e-12;
+    if(rho > limit || other_rho > limit)
       return false;
     const double f = other_rho / rho; // rho >= 1 - m > 0 here
     q = Chart_point(target, f * p.x, -f * p.y);
@@ -186,13 +190,16 @@ public:
 
   /// The representative of a surface point in the chart of its own
   /// hemisphere (chart 0 for the equator itself).
+  /// \throws std::invalid_argument if `p` is outside its chart domain
   Chart_point canonical_chart_point(const Chart_point& p) const
   {
     const double rho = std::hypot(p.x, p.y);
     if(rho < 1. || (rho == 1. && p.chart == 0))
       return p;
     Chart_point q;
-    to_chart(p, 1 - p.chart, q);
+    if(!to_chart(p, 1 - p.chart, q))
+      throw std::invalid_argument("Superquadric_ellipsoid::canonical_chart_point: the point (" + std::to_string(p.x) +
+                                  ", " + std::to_string(p.y) + ") is outside its chart's domain (radius 1 + chart margin)");
     return q;
   }
   /// @}
