@@ -213,8 +213,10 @@ void test_jacobian(const std::string& name, Shape<K> s, std::mt19937& rng)
 {
 #ifdef BLENDED_SHAPE_REDUCED_TESTS
   const int random_points = 60, per_blend = 60; // sanitizer builds: same checks, fewer points
+  const std::size_t blended_points = 100;
 #else
-  const int random_points = 300, per_blend = 150;
+  const int random_points = 300, per_blend = 280;
+  const std::size_t blended_points = 500; // in strips and disks (the issue asks for >= 500)
 #endif
   std::vector<BS::Shape_point> pts;
   for(int i = 0; i < random_points; ++i)
@@ -240,6 +242,24 @@ void test_jacobian(const std::string& name, Shape<K> s, std::mt19937& rng)
     }
   }
   const Eigen::VectorXd q0 = s.parameters();
+  // The shapes moved by +-h along each parameter, once for all points.
+  std::vector<Shape<K>> plus, minus;
+  std::vector<double> steps;
+  for(std::size_t i = 0; i < s.number_of_parameters(); ++i)
+  {
+    const double h = 1e-6 * std::max(1., std::abs(q0[Eigen::Index(i)]));
+    Eigen::VectorXd qp = q0, qm = q0;
+    qp[Eigen::Index(i)] += h;
+    qm[Eigen::Index(i)] -= h;
+    plus.push_back(s);
+    minus.push_back(s);
+    if(!s.is_fixed_parameter(i))
+    {
+      plus.back().set_parameters(qp);
+      minus.back().set_parameters(qm);
+    }
+    steps.push_back(h);
+  }
   std::size_t counts[3] = {0, 0, 0};
   double worst = 0.;
   std::string worst_what;
@@ -262,14 +282,7 @@ void test_jacobian(const std::string& name, Shape<K> s, std::mt19937& rng)
         BS_CHECK(J.col(Eigen::Index(i)).norm() == 0., name << ": fixed parameter " << s.parameter_name(i) << " moves the point");
         continue;
       }
-      const double h = 1e-6 * std::max(1., std::abs(q0[Eigen::Index(i)]));
-      Eigen::VectorXd qp = q0, qm = q0;
-      qp[Eigen::Index(i)] += h;
-      qm[Eigen::Index(i)] -= h;
-      Shape<K> sp = s, sm = s;
-      sp.set_parameters(qp);
-      sm.set_parameters(qm);
-      const Eigen::Vector3d fd = (eig<K>(sp.point(*cp)) - eig<K>(sm.point(*cp))) / (2. * h);
+      const Eigen::Vector3d fd = (eig<K>(plus[i].point(*cp)) - eig<K>(minus[i].point(*cp))) / (2. * steps[i]);
       const double err = (J.col(Eigen::Index(i)) - fd).norm() / std::max(fd.norm(), 1e-4 * scale);
       if(err > worst)
       {
@@ -286,6 +299,7 @@ void test_jacobian(const std::string& name, Shape<K> s, std::mt19937& rng)
             << " disk points; worst relative Jacobian error " << worst << std::endl;
   BS_CHECK(worst < 1e-5, name << ": Jacobian error " << worst << ": " << worst_what);
   BS_CHECK(counts[Strip] >= std::size_t(per_blend), name << ": too few strip points");
+  BS_CHECK(counts[Strip] + counts[Disk] >= blended_points, name << ": too few points in strips and disks");
 }
 
 // The unified mesh of the whole model: closed, manifold, oriented outward,
