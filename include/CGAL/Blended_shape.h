@@ -29,6 +29,7 @@
 #include <CGAL/Blended_shape/sample_model.h>
 #include <CGAL/Blended_shape/Range_scan_simulator.h>
 #include <CGAL/Blended_shape/CAD_objects.h>
+#include <CGAL/Blended_shape/Blended_shape_mesh_io.h>
 #include <CGAL/Blended_shape/Quotient_domain.h>
 #include <CGAL/Blended_shape/Blending_hierarchy.h>
 
