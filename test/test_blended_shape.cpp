@@ -536,6 +536,44 @@ void test_continuity(const std::string& name, const Shape<K>& s)
   BS_CHECK(worst_c1 <= 1e-3, name << ": surface not C1 across a strip boundary (" << worst_c1 << ")");
 }
 
+// Chart points outside their chart's domain are refused with
+// std::invalid_argument; points on the rim (up to rounding) are accepted.
+template <class K>
+void test_points_outside_domains()
+{
+  const Shape<K> s = sphere<K>(); // chart margin 0.2: disks of radius 1.2
+  const double rim = 1.2;
+  for(int k = 0; k < 64; ++k)
+  {
+    const double a = 2. * M_PI * k / 64.;
+    const BS::Shape_point on(0, BS::Chart_point(std::size_t(k % 2), rim * std::cos(a), rim * std::sin(a)));
+    bool ok = true;
+    try
+    {
+      (void)s.point(on);
+    }
+    catch(const std::exception&)
+    {
+      ok = false;
+    }
+    BS_CHECK(ok, "a rim point of the chart domain is refused");
+  }
+  for(const BS::Chart_point& u : {BS::Chart_point(0, 1.21, 0.), BS::Chart_point(1, 0.9, 0.9),
+                                  BS::Chart_point(2, 0., 0.), BS::Chart_point(0, std::nan(""), 0.)})
+  {
+    bool refused = false;
+    try
+    {
+      (void)s.point(BS::Shape_point(0, u));
+    }
+    catch(const std::invalid_argument& e)
+    {
+      refused = std::string(e.what()).find("chart point") != std::string::npos;
+    }
+    BS_CHECK(refused, "chart point (" << u.chart << ", " << u.x << ", " << u.y << ") not refused with a message");
+  }
+}
+
 template <class K>
 void run(const char* kernel)
 {
@@ -544,6 +582,7 @@ void run(const char* kernel)
   for(const auto& c : configurations<K>())
     test_jacobian<K>(c.first, c.second(), rng);
   test_no_vertex_moves<K>();
+  test_points_outside_domains<K>();
   for(const auto& c : configurations<K>())
     test_continuity<K>(c.first, c.second());
   test_unified_meshes<K>();

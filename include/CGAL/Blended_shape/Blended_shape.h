@@ -12,6 +12,7 @@
 #include <Eigen/Core>
 #include <Eigen/Dense>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstddef>
@@ -740,29 +741,27 @@ private:
   {
     if(i >= m_size)
       throw std::out_of_range("Blended_shape: parameter index " + std::to_string(i) + " out of range");
+    // Binary searches over the (increasing) offsets: O(log n) per parameter,
+    // so that update_layout() stays O(n log n) for large models.
     Parameter_address a;
-    for(std::size_t b = m_blends.size(); b-- > 0;)
-      if(i >= m_blend_offset[b])
-      {
-        a.is_blend = true;
-        a.index = b;
-        a.local = i - m_blend_offset[b];
-        return a;
-      }
-    for(std::size_t c = m_components.size(); c-- > 0;)
-      if(i >= m_component_offset[c])
-      {
-        a.index = c;
-        a.local = i - m_component_offset[c];
-        if(c != 0)
-        {
-          if(a.local < number_of_placement_parameters)
-            a.is_placement = true;
-          else
-            a.local -= number_of_placement_parameters;
-        }
-        return a;
-      }
+    if(!m_blend_offset.empty() && i >= m_blend_offset.front())
+    {
+      const auto it = std::upper_bound(m_blend_offset.begin(), m_blend_offset.end(), i) - 1;
+      a.is_blend = true;
+      a.index = std::size_t(it - m_blend_offset.begin());
+      a.local = i - *it;
+      return a;
+    }
+    const auto it = std::upper_bound(m_component_offset.begin(), m_component_offset.end(), i) - 1;
+    a.index = std::size_t(it - m_component_offset.begin());
+    a.local = i - *it;
+    if(a.index != 0)
+    {
+      if(a.local < number_of_placement_parameters)
+        a.is_placement = true;
+      else
+        a.local -= number_of_placement_parameters;
+    }
     return a;
   }
 
@@ -851,6 +850,11 @@ private:
       throw std::invalid_argument("Blended_shape: chart point (" + std::to_string(p.u.chart) + ", " +
                                   std::to_string(p.u.x) + ", " + std::to_string(p.u.y) + ") is not a point of component " +
                                   std::to_string(p.component));
+    if(!s.chart_domain(p.u.chart).contains(p.u.x, p.u.y))
+      throw std::invalid_argument("Blended_shape: chart point (" + std::to_string(p.u.chart) + ", " +
+                                  std::to_string(p.u.x) + ", " + std::to_string(p.u.y) +
+                                  ") is outside the domain of that chart of component " + std::to_string(p.component) +
+                                  " (see Component_shape::chart_domain())");
   }
 
   Ellipse_blending_region make_disk_region(const Shape_point& place, double radius, double half_width,

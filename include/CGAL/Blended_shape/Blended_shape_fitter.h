@@ -206,6 +206,7 @@ public:
       m_charts.emplace_back(c, m_model.chart_domain(c), settings.mesh_resolution);
     position_meshes(m_model);
     m_locator = std::make_unique<Closest_point_locator<Geom_traits>>(m_charts);
+    m_tree_outdated = false;
     choose_subset();
     m_active_parameters.assign(m_model.number_of_parameters(), true);
   }
@@ -516,12 +517,24 @@ private:
     double scale = HUGE_VAL; // Cauchy scale c (infinite: no robust weighting)
   };
 
+  // Positions the chart meshes; their AABB tree is rebuilt when next searched
+  // (a rejected trial's meshes are put back without a rebuild that nobody uses).
   void position_meshes(const Model& model)
   {
     for(Chart_mesh_type& cm : m_charts)
       cm.set_positions([&](const Chart_point& u) { return model.point(u); });
-    if(m_locator)
+    m_tree_outdated = true;
+  }
+
+  // The locator over the current mesh positions.
+  const Closest_point_locator<Geom_traits>& locator()
+  {
+    if(m_tree_outdated)
+    {
       m_locator->rebuild();
+      m_tree_outdated = false;
+    }
+    return *m_locator;
   }
 
   void choose_subset()
@@ -567,10 +580,13 @@ private:
   }
 
   // With `previous` (the correspondences of the same points on the model
-  // before a small step), each projection also starts from the previous foot
-  // point and the closer result wins: the true energy of consecutive models
-  // is then measured consistently, and a nearby foot point is not lost to a
-  // tessellation artifact.
+  // before a small step), each projection starts from the previous foot
+  // point, and the tessellation is only searched for points closer than the
+  // foot point found (a search bounded by that distance, hence cheap); where
+  // it has one, the projection from there is made too and the closer result
+  // wins: the true energy of consecutive models is then measured
+  // consistently, and a nearby foot point is not lost to a tessellation
+  // artifact.
   Correspondences attach(const Model& model, const std::vector<std::size_t>& active,
                          const Correspondences* previous = nullptr)
   {
@@ -579,25 +595,29 @@ private:
     c.u.resize(active.size());
     c.normal.resize(active.size());
     c.distance.resize(active.size());
-    auto squared_distance = [&](const Eigen::Vector3d& p, const Chart_point& u) {
-      const Point_3 x = model.point(u);
-      return (p - Eigen::Vector3d(x.x(), x.y(), x.z())).squaredNorm();
-    };
+    const int iterations = m_settings.projection_iterations;
+    Located_point<Geom_traits> loc;
     for(std::size_t k = 0; k < active.size(); ++k)
     {
       const Eigen::Vector3d& p = m_points[active[k]];
-      c.u[k] = refine_closest_point(model, p, m_locator->locate(Point_3(p[0], p[1], p[2])).chart_point,
-                                     m_settings.projection_iterations);
+      const Point_3 query(p[0], p[1], p[2]);
+      internal::Foot_point foot;
       if(previous != nullptr)
       {
-        const Chart_point w = refine_closest_point(model, p, previous->u[k], m_settings.projection_iterations);
-        if(squared_distance(p, w) < squared_distance(p, c.u[k]))
-          c.u[k] = w;
+        foot = internal::refine_foot_point(model, p, previous->u[k], iterations);
+        if(locator().locate_closer_than(query, Point_3(foot.x[0], foot.x[1], foot.x[2]), loc))
+        {
+          const internal::Foot_point w = internal::refine_foot_point(model, p, loc.chart_point, iterations);
+          if(!(foot.squared_distance < w.squared_distance)) // ties go to the tessellation's start
+            foot = w;
+        }
       }
-      const Point_3 x = model.point(c.u[k]);
-      const Vector_3 nv = model.normal(c.u[k]);
+      else
+        foot = internal::refine_foot_point(model, p, locator().locate(query).chart_point, iterations);
+      c.u[k] = foot.u;
+      const Vector_3 nv = model.normal(foot.u);
       c.normal[k] = Eigen::Vector3d(nv.x(), nv.y(), nv.z());
-      c.distance[k] = (p - Eigen::Vector3d(x.x(), x.y(), x.z())).norm();
+      c.distance[k] = std::sqrt(foot.squared_distance);
     }
     if(m_settings.robust_weighting == Robust_weighting::Cauchy && !active.empty())
     {
@@ -629,6 +649,7 @@ private:
   double m_diameter = 0.;  // about the centroid: the rotation-invariant length scale
   std::vector<Chart_mesh_type> m_charts;
   std::unique_ptr<Closest_point_locator<Geom_traits>> m_locator;
+  bool m_tree_outdated = false; // the meshes moved since the locator's tree was built
   std::vector<std::size_t> m_all, m_subset;
   bool m_use_all = true;
   std::vector<bool> m_active_parameters;

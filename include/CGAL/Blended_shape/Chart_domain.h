@@ -77,11 +77,13 @@ struct Chart_domain
     {
     case Chart_kind::Torus:
       return std::isfinite(x) && std::isfinite(y);
+    // Points on the rim up to rounding (e.g. the tessellation's boundary
+    // vertices, cos and sin times the radius) are in the domain.
     case Chart_kind::Tube:
-      return std::isfinite(x) && y >= y_min && y <= y_max;
+      return std::isfinite(x) && y >= y_min - 1e-12 && y <= y_max + 1e-12;
     case Chart_kind::Disk:
     default:
-      return x * x + y * y <= radius * radius;
+      return x * x + y * y <= radius * radius * (1. + 1e-12);
     }
   }
 };

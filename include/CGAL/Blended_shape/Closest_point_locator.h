@@ -77,14 +77,16 @@ public:
   /// Builds the tree over the faces of all `charts`, which must outlive the locator.
   explicit Closest_point_locator(const std::vector<Chart_mesh_type>& charts) : m_charts(&charts) { rebuild(); }
 
-  /// Rebuilds the tree (after the chart mesh positions moved).
+  /// Rebuilds the tree (after the chart mesh positions moved). The search
+  /// tree of vertices that gives locate() its starting hint is built on the
+  /// first locate() after a rebuild (queries with a bound need none).
   void rebuild()
   {
     m_tree.clear();
     for(const Chart_mesh_type& cm : *m_charts)
       m_tree.insert(faces(cm.mesh()).first, faces(cm.mesh()).second, cm.mesh());
     m_tree.build();
-    m_tree.accelerate_distance_queries();
+    m_any_primitive = m_tree.any_reference_point_and_id().second;
   }
 
   /// The closest point to `query` on the chart meshes, with its chart point.
@@ -92,6 +94,21 @@ public:
   {
     const auto hit = m_tree.closest_point_and_primitive(query);
     return make_location(hit.second.second, hit.second.first, hit.first);
+  }
+
+  /// The closest point to `query` on the chart meshes if it is at least as
+  /// close as `bound` (any point, e.g. a foot point already found on the
+  /// analytic surface) and differs from it: then `true`, with it in `result`.
+  /// Otherwise `false` (and `result` is unchanged). The known distance bounds
+  /// the search, which makes it much cheaper than locate() when it is small.
+  bool locate_closer_than(const Point_3& query, const Point_3& bound, Located_point<GeomTraits>& result) const
+  {
+    const auto hit = m_tree.closest_point_and_primitive(
+      query, typename Tree::Point_and_primitive_id(bound, m_any_primitive));
+    if(hit.first == bound)
+      return false;
+    result = make_location(hit.second.second, hit.second.first, hit.first);
+    return true;
   }
 
   /// The same answer by brute force over every face (for tests).
@@ -138,30 +155,23 @@ private:
 
   const std::vector<Chart_mesh_type>* m_charts;
   Tree m_tree;
+  typename Primitive::Id m_any_primitive; // the id handed to bounded queries with their bound
 };
 
-/*!
-\ingroup PkgBlendedShapeFitting
-The closest point of `p` on the analytic surface of `model`, starting from
-`start` (typically the chart point of the closest point on the tessellation,
-Closest_point_locator::locate()): at most `max_iterations` safeguarded
-Gauss-Newton steps on the chart coordinates, with the analytic chart
-Jacobian (`point_and_chart_jacobian()`: one evaluation per step, which also
-gives the point), each kept only if it brings the model point closer (the
-step is halved up to three times otherwise, and where the chart Jacobian is
-ill-conditioned, retried with a strong Levenberg damping). A step that leaves
-a chart is taken in the canonical chart of its end point.
+namespace internal {
 
-The tessellation is a piecewise linear approximation: a closest point found
-on it maps back to a chart point a little off the true foot point (by the
-chord error of the chart triangle), and two charts that share a mesh edge map
-it to different such chart points. Refinement removes this.
+/// A foot point: the chart point `u`, the model point `x(u)` and `|p - x(u)|^2`.
+struct Foot_point
+{
+  Chart_point u;
+  Eigen::Vector3d x;
+  double squared_distance;
+};
 
-`Model` provides `point_and_chart_jacobian()`, `chart_domain()` and
-`canonical_chart_point()` (as Deformable_model does).
-*/
+/// refine_closest_point(), also returning the model point and the squared
+/// distance at the result (computed as `(p - model.point(u)).squaredNorm()` would be).
 template <class Model>
-Chart_point refine_closest_point(const Model& model, const Eigen::Vector3d& p, Chart_point start, int max_iterations)
+Foot_point refine_foot_point(const Model& model, const Eigen::Vector3d& p, Chart_point start, int max_iterations)
 {
   typedef typename Model::Chart_jacobian Chart_jacobian;
   auto eval = [&](const Chart_point& v, Chart_jacobian& D) {
@@ -174,30 +184,42 @@ Chart_point refine_closest_point(const Model& model, const Eigen::Vector3d& p, C
   double d2 = (p - x).squaredNorm();
   for(int it = 0; it < max_iterations && d2 > 0.; ++it)
   {
-    const Eigen::Matrix2d JtJ = J.transpose() * J;
-    const double t = JtJ.trace();
+    const double j00 = J.col(0).squaredNorm(), j11 = J.col(1).squaredNorm(), j01 = J.col(0).dot(J.col(1));
+    const double t = j00 + j11;
     if(!(t > 0.) || !std::isfinite(t))
       break;
-    const Eigen::Vector2d g = J.transpose() * (p - x);
+    const Eigen::Vector3d r = p - x;
+    const double g0 = J.col(0).dot(r), g1 = J.col(1).dot(r);
     // Levenberg-regularized: where exponents above 1 flatten the map (its chart
     // Jacobian loses rank on the poles and axes) the step still moves along
     // the direction that is left. When one column is much shorter than the
     // other (next to such a place) and the step fails, it is retried with a
     // strong damping of that direction: its Gauss-Newton step is then far too
     // long, and would otherwise take the good step along the other one with it.
-    const bool ill_conditioned = (std::min)(JtJ(0, 0), JtJ(1, 1)) < 1e-3 * t;
+    const bool ill_conditioned = (std::min)(j00, j11) < 1e-3 * t;
     bool improved = false, converged = false;
     for(int level = 0; level < (ill_conditioned ? 2 : 1) && !improved; ++level)
     {
-      Eigen::Matrix2d A = JtJ;
-      A.diagonal().array() += (level == 0 ? 1e-10 : 1e-3) * t;
-      Eigen::Vector2d step = A.ldlt().solve(g);
-      if(!(step.squaredNorm() > 1e-22)) // at the foot point, to the accuracy that matters
+      // the 2 x 2 system (J^T J + mu tr I) step = J^T r, solved in closed form
+      // (positive definite: the damping keeps the determinant away from zero)
+      const double mu = (level == 0 ? 1e-10 : 1e-3) * t;
+      const double a = j00 + mu, c = j11 + mu, det = a * c - j01 * j01;
+      if(!(det > 0.))
+        break;
+      Eigen::Vector2d step((c * g0 - j01 * g1) / det, (a * g1 - j01 * g0) / det);
+      const double length2 = step.squaredNorm();
+      // At the foot point to the accuracy that matters: a tangential error
+      // of 1e-9 chart units changes the distance by ~1e-18 of the model's size.
+      if(!(length2 > 1e-18))
       {
         converged = true;
         break;
       }
-      for(int half = 0; half < 4 && !improved; ++half, step *= 0.5)
+      // A step this short that fails at full length fails on rounding alone
+      // (the squared distance is only known to ~1e-13 relatively): halving it
+      // cannot help.
+      const int halvings = (length2 < 1e-14) ? 1 : 4;
+      for(int half = 0; half < halvings && !improved; ++half, step *= 0.5)
       {
         Chart_point v(u.chart, u.x + step[0], u.y + step[1]);
         const Chart_domain dom = model.chart_domain(v.chart);
@@ -211,11 +233,47 @@ Chart_point refine_closest_point(const Model& model, const Eigen::Vector3d& p, C
           u = v; x = xv; d2 = dv; J = Jv; improved = true;
         }
       }
+      if(!improved && length2 < 1e-14)
+      {
+        converged = true;
+        break;
+      }
     }
     if(!improved || converged)
       break;
   }
-  return u;
+  return Foot_point{u, x, d2};
+}
+
+} // namespace internal
+
+/*!
+\ingroup PkgBlendedShapeFitting
+The closest point of `p` on the analytic surface of `model`, starting from
+`start` (typically the chart point of the closest point on the tessellation,
+Closest_point_locator::locate()): at most `max_iterations` safeguarded
+Gauss-Newton steps on the chart coordinates, with the analytic chart
+Jacobian (`point_and_chart_jacobian()`: one evaluation per step, which also
+gives the point), each kept only if it brings the model point closer (the
+step is halved up to three times otherwise, and where the chart Jacobian is
+ill-conditioned, retried with a strong Levenberg damping). A step that leaves
+a chart is taken in the canonical chart of its end point. The iteration stops
+when the step is below 1e-9 chart units (the foot point is then known far
+beyond what distances and normals need), or when a step shorter than 1e-7
+fails (it then only fails on rounding).
+
+The tessellation is a piecewise linear approximation: a closest point found
+on it maps back to a chart point a little off the true foot point (by the
+chord error of the chart triangle), and two charts that share a mesh edge map
+it to different such chart points. Refinement removes this.
+
+`Model` provides `point_and_chart_jacobian()`, `chart_domain()` and
+`canonical_chart_point()` (as Deformable_model does).
+*/
+template <class Model>
+Chart_point refine_closest_point(const Model& model, const Eigen::Vector3d& p, Chart_point start, int max_iterations)
+{
+  return internal::refine_foot_point(model, p, start, max_iterations).u;
 }
 
 

@@ -218,9 +218,11 @@ auto fit_blended_shape(const PointRange& points, const NamedParameters& np = CGA
   Model start_model = make_initial_model(initial, 2);
   std::size_t candidate_iterations = 0;
   Fitting_status status;
+  // the mean squared distance of start_model on the rough fits' subset (the
+  // same for every candidate: same points, seed and subset size)
+  double best_distance = HUGE_VAL;
   if(all_axes)
   {
-    double best_distance = HUGE_VAL;
     for(int z_axis = 0; z_axis < 3 && !status.aborted; ++z_axis)
     {
       Fitter candidate(points, make_initial_model(initial, z_axis), rough, point_map);
@@ -239,8 +241,6 @@ auto fit_blended_shape(const PointRange& points, const NamedParameters& np = CGA
   // the wrong one.
   if(all_axes && !status.aborted)
   {
-    Fitter current(points, start_model, rough, point_map);
-    double best_distance = current.mean_squared_distance(false);
     const Model winner = start_model;
     for(int swap = 0; swap < 3 && !status.aborted; ++swap)
     {
