@@ -149,19 +149,24 @@ public:
     return Chart_point(std::size_t(m_end), rho * c, rho * sn);
   }
 
-  /// The disk coordinates' point `c_2 + t (C_2(1, theta) - c_2)` and `[∂/∂t, ∂/∂theta]`
-  /// (not in the Tube domain: there the ends are annuli).
-  Chart_point core_point(double t, double theta, Matrix_2* J = nullptr) const
+  /// The point with disk coordinates `(t, theta)` (see
+  /// `Ellipse_blending_region::core_point()`, with `d_b = +1` and the
+  /// blend's core stretch `k`) and `[∂/∂t, ∂/∂theta]` (not in the Tube
+  /// domain: there the ends are annuli). For a hole end the curves are
+  /// radial: `rho(t) = t R + b(t) (k delta - R)`, `R = 1 - 2 delta`.
+  Chart_point core_point(double t, double theta, double k, Matrix_2* J = nullptr) const
   {
     if(m_kind == Ellipse)
     {
-      const Vector_2 p = m_ellipse->core_point(t, theta, 1., J);
+      const Vector_2 p = m_ellipse->core_point(t, theta, 1., k, J);
       return Chart_point(m_ellipse->chart(), p.x(), p.y());
     }
-    const double R = 1. - 2. * m_delta, rho = t * R, phi = theta + m_phase;
+    const double R = 1. - 2. * m_delta, phi = theta + m_phase;
+    const double rho = t * R + Ellipse_blending_region::core_bend(t) * (k * m_delta - R);
+    const double drho = R + Ellipse_blending_region::core_bend_derivative(t) * (k * m_delta - R);
     const double c = std::cos(phi), sn = std::sin(phi);
     if(J)
-      *J << R * c, -rho * sn, R * sn, rho * c;
+      *J << drho * c, -rho * sn, drho * sn, rho * c;
     return Chart_point(std::size_t(m_end), rho * c, rho * sn);
   }
 
@@ -176,8 +181,8 @@ public:
     bool has_core = false;                    ///< whether `t`, `theta` are the disk coordinates
   };
 
-  /// Locates `u` (a chart point of `chart(tube)`).
-  Location locate(const Chart_point& u, bool tube) const
+  /// Locates `u` (a chart point of `chart(tube)`); `k` is the blend's core stretch.
+  Location locate(const Chart_point& u, bool tube, double k) const
   {
     Location loc;
     if(m_kind == Ellipse)
@@ -192,11 +197,11 @@ public:
       }
       else if(r.side == Region_side::Retained)
       {
-        if(std::optional<Core_coordinates> k = m_ellipse->core_coordinates(v, 1.))
+        if(std::optional<Core_coordinates> c = m_ellipse->core_coordinates(v, 1., k))
         {
           loc.has_core = true;
-          loc.t = k->t;
-          loc.theta = k->theta;
+          loc.t = c->t;
+          loc.theta = c->theta;
         }
       }
       return loc;
@@ -227,12 +232,38 @@ public:
     else if(!tube)
     {
       loc.has_core = true;
-      loc.t = rho / (1. - 2. * m_delta);
+      loc.t = hole_end_core_t(rho, k);
     }
     return loc;
   }
 
+  /// The ratio of a region's mean radius to its strip half-width (an
+  /// ellipse region: `(e_1 + e_2) / 2 / r`; a hole end: `(1 - 2 delta) / delta`).
+  double radius_to_half_width() const
+  {
+    if(m_kind == Ellipse)
+      return 0.5 * (m_ellipse->parameters()[Ellipse_blending_region::E_1] +
+                    m_ellipse->parameters()[Ellipse_blending_region::E_2]) / m_ellipse->half_width();
+    return (1. - 2. * m_delta) / m_delta;
+  }
+
 private:
+  // t in [0, 1] with rho(t) = rho (rho(t) increases: the stretch keeps b's dent mild).
+  double hole_end_core_t(double rho, double k) const
+  {
+    const double R = 1. - 2. * m_delta;
+    double t = (std::min)(1., rho / R);
+    for(int it = 0; it < 40; ++it)
+    {
+      const double f = t * R + Ellipse_blending_region::core_bend(t) * (k * m_delta - R) - rho;
+      const double df = R + Ellipse_blending_region::core_bend_derivative(t) * (k * m_delta - R);
+      if(std::abs(f) <= 4e-16 || !(df > 0.))
+        break;
+      t -= f / df;
+    }
+    return t;
+  }
+
   Kind m_kind = Ellipse;
   std::optional<Ellipse_blending_region> m_ellipse;
   int m_end = 0;
@@ -256,14 +287,34 @@ added component's retained interior is its own surface.
 class Blend
 {
 public:
-  /// A blend of the given kind between the two components.
+  /// A blend of the given kind between the two components; `core_stretch`
+  /// `k` > 0 of the disk coordinates (0: default_core_stretch()).
+  /// \throws std::invalid_argument if the base region keeps its inside or `k` is negative or not finite
   Blend(Blend_kind kind, std::size_t base_component, const Ellipse_blending_region& base_region,
-        std::size_t added_component, const Added_side& added_side, std::size_t hole = no_hole)
+        std::size_t added_component, const Added_side& added_side, std::size_t hole = no_hole,
+        double core_stretch = 0.)
     : m_kind(kind), m_base(base_component), m_region(base_region), m_added(added_component), m_side(added_side),
-      m_hole(hole)
+      m_hole(hole), m_stretch(core_stretch)
   {
     if(base_region.retained_side() != Retained_side::Outside)
       throw std::invalid_argument("Blend: the base keeps the outside of its region's curve");
+    if(!(core_stretch >= 0.) || !std::isfinite(core_stretch))
+      throw std::invalid_argument("Blend: the core stretch must be a finite positive number (or 0 for the default)");
+    if(m_stretch == 0.)
+      m_stretch = default_core_stretch(base_region, added_side);
+  }
+
+  /// The default core stretch `k` of a blend: the geometric mean of the two
+  /// sides' radius to half-width ratios, so that on both sides the disk
+  /// coordinates' end velocity `k ∂C/∂d` is within a factor
+  /// `sqrt(ratio_1 / ratio_2)` of the radius (a mild bend; see
+  /// `Ellipse_blending_region::core_point()`). Fixed when the blend is made:
+  /// it is not a parameter.
+  static double default_core_stretch(const Ellipse_blending_region& base_region, const Added_side& added_side)
+  {
+    const Eigen::Vector2d q = base_region.parameters().segment<2>(Ellipse_blending_region::E_1);
+    const double base_ratio = 0.5 * (q.x() + q.y()) / base_region.half_width();
+    return std::sqrt(base_ratio * added_side.radius_to_half_width());
   }
 
   /// Marks "no hole" in hole().
@@ -285,6 +336,9 @@ public:
   std::size_t hole() const { return m_hole; }
   /// Whether the blend is gradual (disk region, `h` free).
   bool is_gradual() const { return m_region.kind() == Blending_region_kind::Disk; }
+  /// The core stretch `k` of the disk coordinates on both sides (see
+  /// `Ellipse_blending_region::core_point()`): beta is C1 across the disk boundary.
+  double core_stretch() const { return m_stretch; }
 
   /// \cond INTERNAL
   void set_base_component(std::size_t c) { m_base = c; }
@@ -299,6 +353,7 @@ private:
   std::size_t m_added;
   Added_side m_side;
   std::size_t m_hole;
+  double m_stretch;
 };
 
 } // namespace Blended_shapes

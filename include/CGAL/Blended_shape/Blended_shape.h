@@ -362,7 +362,7 @@ public:
           return std::nullopt;
         continue;
       }
-      const Added_side::Location loc = A.locate(v, tube);
+      const Added_side::Location loc = A.locate(v, tube, B.core_stretch());
       const Ellipse_blending_region& R = B.base_region();
       if(loc.side == Region_side::Strip)
       {
@@ -375,7 +375,7 @@ public:
       {
         if(!loc.has_core)
           return std::nullopt; // outside the disk of a gradual blend: not on the surface
-        const Eigen::Vector2d u1 = R.core_point(loc.t, loc.theta, -1.);
+        const Eigen::Vector2d u1 = R.core_point(loc.t, loc.theta, -1., B.core_stretch());
         return Shape_point(B.base_component(), Chart_point(R.chart(), u1.x(), u1.y()));
       }
     }
@@ -929,7 +929,7 @@ private:
       const bool tube = is_tube(p.component);
       if(s.to_chart(p.u, B.added_side().chart(tube), v))
       {
-        const Region_side side = B.added_side().locate(v, tube).side;
+        const Region_side side = B.added_side().locate(v, tube, B.core_stretch()).side;
         if(side == Region_side::Strip)
           return true;
       }
@@ -1050,12 +1050,12 @@ private:
         // blend (canonical_point() locates them the same way): only disks of
         // gradual blends get here.
         CGAL_assertion(B.is_gradual());
-        const std::optional<Core_coordinates> k = R.core_coordinates(v, -1.);
+        const std::optional<Core_coordinates> k = R.core_coordinates(v, -1., B.core_stretch());
         if(!k)
           break; // on the boundary of the disk to rounding: alpha = h, beta at the strip's edge
-        u2 = B.added_side().core_point(k->t, k->theta, &Jb);
+        u2 = B.added_side().core_point(k->t, k->theta, B.core_stretch(), &Jb);
         if(J)
-          du2 = Jb * R.core_gradient(*k, -1.);
+          du2 = Jb * R.core_gradient(*k, -1., B.core_stretch());
       }
       const double alpha = A.alpha;
       Eigen::Matrix<double, 3, 2> D2;

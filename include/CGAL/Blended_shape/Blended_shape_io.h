@@ -142,6 +142,7 @@ bs_json::Value blended_shape_to_json(const Blended_shape<GT>& shape)
     }
     o.set("added_side", side);
     o.set("hole", B.hole() == Blend::no_hole ? bs_json::Value() : json_index(B.hole()));
+    o.set("core_stretch", bs_json::Value::number(B.core_stretch()));
     blends.push_back(o);
 
     bs_json::Value h = bs_json::Value::object();
@@ -598,7 +599,7 @@ private:
     {
       const std::string path = element_path("blends", b);
       const Value& o = blends[b];
-      expect_object(o, path, {"kind", "base_component", "added_component", "region", "added_side", "hole"});
+      expect_object(o, path, {"kind", "base_component", "added_component", "region", "added_side", "hole", "core_stretch"});
       const std::string kpath = member_path(path, "kind");
       const std::string& ks = string(field(o, path, "kind"), kpath);
       Blend_kind kind = Blend_kind::Split;
@@ -672,7 +673,16 @@ private:
                                               : "only a blend of kind \"hole\" has a \"hole_end\" added side");
       try
       {
-        shape.append_blend(Blend(kind, base, region, added, *side, hole), false);
+        // Optional (default: Blend::default_core_stretch()), written by every writer.
+        double stretch = 0.;
+        if(const Value* sv = o.find("core_stretch"))
+        {
+          const std::string stpath = member_path(path, "core_stretch");
+          stretch = number(*sv, stpath);
+          if(!(stretch > 0.))
+            fail(stpath, "expected a positive number");
+        }
+        shape.append_blend(Blend(kind, base, region, added, *side, hole, stretch), false);
       }
       catch(const std::invalid_argument& e)
       {

@@ -389,7 +389,7 @@ CGAL::Surface_mesh<typename GeomTraits::Point_3> make_unified_mesh(const Blended
           const Region_location loc = B.base_region().locate(Eigen::Vector2d(v.x, v.y));
           return level(loc.side, loc.coordinates.d);
         }
-        const Added_side::Location loc = B.added_side().locate(v, tube);
+        const Added_side::Location loc = B.added_side().locate(v, tube, B.core_stretch());
         return level(loc.side, loc.d);
       };
       auto value = [&](const Shape_point& p) {
@@ -470,7 +470,7 @@ CGAL::Surface_mesh<typename GeomTraits::Point_3> make_unified_mesh(const Blended
         else
         {
           s.to_chart(p.u, B.added_side().chart(tube), v);
-          rv.theta = B.added_side().locate(v, tube).theta;
+          rv.theta = B.added_side().locate(v, tube, B.core_stretch()).theta;
           rv.base_uv = R.strip_point(-1., rv.theta);
         }
         row.push_back(rv);

@@ -1366,17 +1366,30 @@ public:
 
   /// \name Disk coordinates (A.1: a disk-shaped coordinate system)
   /// The inside of the strip boundary curve `C(d_b, .)` is covered by the
-  /// rays from the centre: `u = c + t (C(d_b, theta) - c)`, `t in [0, 1)`.
-  /// With `d_b = -1` this parameterizes the discarded interior of a disk
-  /// region of the base shape; with `d_b = +1` the retained interior of the
-  /// matching region of the added shape, so the correspondence beta extends
-  /// from the strip (eq. 16) to the whole disk (Fig. 7) by equal `(t, theta)`.
-  /// The boundary curve must be star-shaped from the centre (true for
-  /// ellipses whose strip half-width is below the smaller radius of curvature).
+  /// curves of constant `theta` from the centre `c`:
+  ///
+  ///     u(t, theta) = c + t P + b(t) (E - P),   t in [0, 1),
+  ///
+  /// with `P = C(d_b, theta) - c`, `E = -d_b k ∂C/∂d (d_b, theta)` and the
+  /// bend `b(t) = t^4 (t - 1)`. At `t = 1` the curve reaches `C(d_b, theta)`
+  /// with velocity `E`: the strip's own transversal direction, scaled by the
+  /// blend's *core stretch* `k`. With `d_b = -1` this parameterizes the
+  /// discarded interior of a disk region of the base shape; with `d_b = +1`
+  /// the retained interior of the matching region of the added shape, and
+  /// the correspondence beta extends from the strip (eq. 16) to the whole
+  /// disk (Fig. 7) by equal `(t, theta)`. Because both sides end with
+  /// velocities that beta's strip part maps onto each other (`∂C_1/∂d` to
+  /// `-∂C_2/∂d`, the same `k`), beta is C1 across the disk boundary, and so
+  /// is the blended surface for every `h`. Near the centre `b` is
+  /// negligible (the straight rays `c + t P`). The boundary curve must be
+  /// star-shaped from the centre (true for ellipses whose strip half-width is
+  /// below the smaller radius of curvature), and `k` must keep the bend mild:
+  /// `k |∂C/∂d| / |P|` below about 5 (see `Blend::default_core_stretch()`).
   /// @{
 
-  /// The disk coordinates of `u`, if `u` lies inside `C(d_b, .)` (`t < 1`).
-  std::optional<Core_coordinates> core_coordinates(const Vector_2& u, double d_b) const
+  /// The straight-ray coordinates of `u`: `u = c + t (C(d_b, theta) - c)`, if
+  /// `u` lies inside `C(d_b, .)` (`t < 1`); the starting guess of core_coordinates().
+  std::optional<Core_coordinates> ray_coordinates(const Vector_2& u, double d_b) const
   {
     const Vector_2 c = center(), v = u - c;
     const double vn = v.norm();
@@ -1437,38 +1450,95 @@ public:
     return std::nullopt;
   }
 
-  /// `c + t (C(d_b, theta) - c)` and its Jacobian `[∂/∂t, ∂/∂theta]`.
-  Vector_2 core_point(double t, double theta, double d_b, Eigen::Matrix2d* jacobian = nullptr) const
+  /// The bend `b(t) = t^4 (t - 1)` of the disk coordinates and its derivative.
+  static double core_bend(double t) { return t * t * t * t * (t - 1.); }
+  /// `b'(t) = t^3 (5 t - 4)`.
+  static double core_bend_derivative(double t) { return t * t * t * (5. * t - 4.); }
+
+  /// The point with disk coordinates `(t, theta)` (see above) and its
+  /// Jacobian `[∂/∂t, ∂/∂theta]`; `k` is the core stretch.
+  Vector_2 core_point(double t, double theta, double d_b, double k, Eigen::Matrix2d* jacobian = nullptr) const
   {
+    double gamma;
+    const std::size_t i = m_region->segment_of_theta(theta, gamma);
     Eigen::Matrix2d J;
-    const Vector_2 c = center(), P = strip_point(d_b, theta, &J);
+    const Vector_2 p = core_point_in_segment(i, gamma, t, d_b, k, &J);
     if(jacobian)
     {
-      jacobian->col(0) = P - c;
-      jacobian->col(1) = t * J.col(1);
+      *jacobian = J;
+      jacobian->col(1) /= segment_theta_span(i);
     }
-    return c + t * (P - c);
+    return p;
+  }
+
+  /// The disk coordinates of `u`, if `u` lies inside `C(d_b, .)` (`t < 1`):
+  /// the straight-ray coordinates, refined by Newton's method on the bent
+  /// curves; `k` is the core stretch.
+  std::optional<Core_coordinates> core_coordinates(const Vector_2& u, double d_b, double k) const
+  {
+    std::optional<Core_coordinates> c = ray_coordinates(u, d_b);
+    if(!c || c->t == 0.)
+      return c;
+    const double scale = (std::max)(1., u.norm());
+    for(int it = 0; it < 40; ++it)
+    {
+      Eigen::Matrix2d J;
+      const Vector_2 r = core_point_in_segment(c->segment, c->gamma, c->t, d_b, k, &J) - u;
+      if(r.norm() <= 4e-16 * scale)
+        break;
+      const Vector_2 step = J.fullPivLu().solve(-r);
+      if(!step.allFinite())
+        break;
+      c->t += step.x();
+      double theta = theta_at(c->segment) + (c->gamma + step.y()) * segment_theta_span(c->segment);
+      theta = internal::wrap_angle(theta);
+      c->segment = m_region->segment_of_theta(theta, c->gamma);
+      c->theta = theta;
+    }
+    return c;
   }
 
   /// The gradients of `t` (row 0) and `theta` (row 1) with respect to the
-  /// seven parameters at the fixed chart point `u` with disk coordinates `k`
-  /// (implicit differentiation of `c + t (C(d_b, gamma) - c) = u`).
-  Eigen::Matrix<double, 2, number_of_parameters> core_gradient(const Core_coordinates& k, double d_b) const
+  /// seven parameters at the fixed chart point `u` with disk coordinates `c`
+  /// (implicit differentiation of `u(t, theta) = u`, the stretch `k` fixed).
+  Eigen::Matrix<double, 2, number_of_parameters> core_gradient(const Core_coordinates& c, double d_b, double k) const
   {
-    const std::size_t i = k.segment;
-    const Vector_2 c = center(), P = m_region->strip_point(i, d_b, k.gamma);
+    const std::size_t i = c.segment;
     Eigen::Matrix2d A;
-    A.col(0) = P - c;
-    A.col(1) = k.t * m_region->strip_jacobian(i, d_b, k.gamma).col(1);
-    Eigen::Matrix<double, 2, 5> dG = k.t * strip_point_shape_derivative(i, d_b, k.gamma);
-    dG.leftCols<2>() += (1. - k.t) * Eigen::Matrix2d::Identity();
+    core_point_in_segment(i, c.gamma, c.t, d_b, k, &A);
+    // u = c (1 - t + b) + C(d_b) (t - b) - b d_b k (C(1) - C(0)), all at fixed (segment, gamma).
+    const double b = core_bend(c.t);
+    Eigen::Matrix<double, 2, 5> dU = (c.t - b) * strip_point_shape_derivative(i, d_b, c.gamma) -
+                                     (b * d_b * k) * (strip_point_shape_derivative(i, 1., c.gamma) -
+                                                      strip_point_shape_derivative(i, 0., c.gamma));
+    dU.leftCols<2>() += (1. - c.t + b) * Eigen::Matrix2d::Identity();
     Eigen::Matrix<double, 2, number_of_parameters> g = Eigen::Matrix<double, 2, number_of_parameters>::Zero();
-    g.leftCols<5>() = -A.inverse() * dG;
+    g.leftCols<5>() = -A.inverse() * dU;
     g.row(1) *= segment_theta_span(i);
     return g;
   }
   /// @}
 
+private:
+  // u(t, gamma) in segment i and [∂u/∂t, ∂u/∂gamma].
+  Vector_2 core_point_in_segment(std::size_t i, double gamma, double t, double d_b, double k,
+                                 Eigen::Matrix2d* J) const
+  {
+    const Vector_2 c = center(), C = m_region->strip_point(i, d_b, gamma);
+    const Eigen::Matrix2d Jc = m_region->strip_jacobian(i, d_b, gamma);
+    // C is affine in d (eq. 24): ∂C/∂d = N(gamma) and ∂N/∂gamma = d_b (∂C/∂gamma(d_b) - ∂C/∂gamma(0)).
+    const Vector_2 N = Jc.col(0), P = C - c, E = (-d_b * k) * N;
+    const double b = core_bend(t);
+    if(J)
+    {
+      const Vector_2 Ng = d_b * (Jc.col(1) - m_region->strip_jacobian(i, 0., gamma).col(1));
+      J->col(0) = P + core_bend_derivative(t) * (E - P);
+      J->col(1) = t * Jc.col(1) + b * ((-d_b * k) * Ng - Jc.col(1));
+    }
+    return c + t * P + b * (E - P);
+  }
+
+public:
   /// \name Evaluation (forwarded to region())
   /// @{
 
