@@ -798,6 +798,10 @@ struct Io_tests
                  "chart out of range");
     expect_error(with_value(text, "half_width", "-0.05"), {"blends[0].region.half_width", "must be positive"},
                  "negative half-width");
+    expect_error(with_value(text, "core_stretch", "-2"), {"blends[0].core_stretch", "expected a positive number"},
+                 "negative core stretch");
+    expect_error(with_value(text, "core_stretch", "0"), {"blends[0].core_stretch", "expected a positive number"},
+                 "zero core stretch");
     expect_error(with_value(text, "half_width", "0.9"), {"blends[0].region", "Blending_region"},
                  "half-width too large for the ellipse");
     expect_error(with_element(text, "parameters", 2, "-0.25"),
