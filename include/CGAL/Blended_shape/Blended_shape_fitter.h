@@ -131,11 +131,15 @@ The estimation engine of sec. 5.1-5.3 with explicit steps: data forces from
 closest points (eq. 8), one integration step of the dynamics (eq. 7), and a
 run loop with phases and steady-state detection.
 
-Each step: (1) the chart meshes are positioned by the current model and an
-AABB tree is built over them; (2) each data point in use is attached to its
-closest mesh point, whose chart, face and barycentric coordinates give a
-domain point, refined into the closest point `u_i` on the analytic surface
-by a few safeguarded Gauss-Newton steps on the chart coordinates; the model and its Jacobian `L(u_i)` are evaluated
+Each step: (1) the chart meshes are positioned by the current model and the
+AABB tree of Closest_point_locator is rebuilt over them when searched; (2)
+each data point in use is attached to its closest mesh point, whose chart,
+face and barycentric coordinates give a domain point, refined into the
+closest point `u_i` on the analytic surface by a few safeguarded
+Gauss-Newton steps on the chart coordinates (in the sweeps of trial steps,
+from the point's previous foot point instead; the mesh is then only searched
+for points closer than the foot point found, and projected from where it has
+one more than a mesh spacing away); the model and its Jacobian `L(u_i)` are evaluated
 there analytically, and the data force is
 `f_i = w_i n_i n_i^T (p_i - x(u_i))` (stiffness 1, `n_i` the model
 normal at `u_i`): the paper's force `p_i - x(u_i)` (eq. 8) projected on the
@@ -172,7 +176,7 @@ public:
   typedef Chart_mesh<Geom_traits> Chart_mesh_type;  ///< the tessellation of one chart
 
   /// A fitter of `initial_model` to `points` (copied, as `double`), with the
-  /// chart meshes of the model at `settings.mesh_resolution` and their AABB tree.
+  /// chart meshes of the model at `settings.mesh_resolution` and their Closest_point_locator.
   /// \throws Input_error if the points are unusable (see check_points()).
   /// \throws std::invalid_argument on invalid settings.
   template <class PointRange, class PointMap = CGAL::Identity_property_map<Point_3>>
@@ -202,6 +206,7 @@ public:
     for(const Eigen::Vector3d& p : m_points) centroid += p;
     centroid /= double(m_points.size());
     for(const Eigen::Vector3d& p : m_points) m_diameter = (std::max)(m_diameter, 2. * (p - centroid).norm());
+    m_charts.reserve(m_model.number_of_charts()); // the locator keeps pointers to them
     for(std::size_t c = 0; c < m_model.number_of_charts(); ++c)
       m_charts.emplace_back(c, m_model.chart_domain(c), settings.mesh_resolution);
     position_meshes(m_model);
@@ -252,9 +257,10 @@ public:
   state, and the model stays put) and does not increase the true energy (with
   the closest points of the proposed model, which the next step then reuses,
   so an accepted step costs one closest-point sweep). Otherwise the damping
-  grows (Gauss-Newton, up to 8 tries) or the time step halves (explicit, up to
-  12 tries) and it tries again; at most two trials of a step get a
-  closest-point sweep.
+  grows (Gauss-Newton, up to 8 tries; not at a rest state, which would only
+  leave the next phase with needlessly damped first steps) or the time step
+  halves (explicit, up to 12 tries) and it tries again; at most two trials of
+  a step get a closest-point sweep.
   */
   Step_report step()
   {
@@ -330,10 +336,15 @@ public:
       Model trial = m_model;
       trial.set_parameters(q1);
       double E1 = 0.;
+      // the points (the same as point()) with their chart Jacobians: the
+      // closest-point sweep starts from these chart points
+      m_start_points.resize(active.size());
+      m_start_jacobians.resize(active.size());
       for(std::size_t k = 0; k < active.size(); ++k)
       {
-        const Point_3 x = trial.point(corr.u[k]);
-        E1 += 0.5 * w[k] * CGAL::square(corr.normal[k].dot(m_points[active[k]] - Eigen::Vector3d(x.x(), x.y(), x.z())));
+        const Point_3 x = trial.point_and_chart_jacobian(corr.u[k], m_start_jacobians[k]);
+        m_start_points[k] = Eigen::Vector3d(x.x(), x.y(), x.z());
+        E1 += 0.5 * w[k] * CGAL::square(corr.normal[k].dot(m_points[active[k]] - m_start_points[k]));
       }
       if(!(E1 <= E0))
         return false;
@@ -344,7 +355,7 @@ public:
       }
       if(++sweeps > 2)
         return false;
-      Correspondences moved = attach(trial, active, &corr);
+      Correspondences moved = attach(trial, active, &corr, true);
       const double F1 = true_energy(moved.distance, c);
       if(!(F1 <= report.energy_before))
         return false;
@@ -366,8 +377,8 @@ public:
         const Eigen::VectorXd delta = A.ldlt().solve(g);
         if(delta.allFinite() && try_step(delta))
           m_lambda = (std::max)(m_lambda / 3., 1e-9);
-        else
-          m_lambda = (std::min)(m_lambda * 8., 1e12);
+        else if(!negligible) // at a rest state the damping is not to blame: it would
+          m_lambda = (std::min)(m_lambda * 8., 1e12); // only slow down the next phase's first steps
       }
     }
     else
@@ -486,7 +497,11 @@ public:
   /// to their closest model points: comparable between fits of the same points.
   double mean_squared_distance(bool all_points)
   {
-    const Correspondences corr = all_points ? correspondences_of_all_points() : attach(m_model, m_subset);
+    // those of the last step, if they are of the subset (as after a run() that stopped after the subset phase)
+    const Correspondences& corr = all_points ? correspondences_of_all_points()
+                                             : (m_correspondences_valid && !m_correspondences_all)
+                                                 ? m_correspondences
+                                                 : (m_scratch = attach(m_model, m_subset));
     double sum = 0.;
     for(double d : corr.distance)
       sum += d * d;
@@ -587,8 +602,10 @@ private:
   // wins: the true energy of consecutive models is then measured
   // consistently, and a nearby foot point is not lost to a tessellation
   // artifact.
+  // With `evaluated`, m_start_points and m_start_jacobians hold the model's
+  // points and chart Jacobians at the previous chart points.
   Correspondences attach(const Model& model, const std::vector<std::size_t>& active,
-                         const Correspondences* previous = nullptr)
+                         const Correspondences* previous = nullptr, bool evaluated = false)
   {
     position_meshes(model);
     Correspondences c;
@@ -596,6 +613,10 @@ private:
     c.normal.resize(active.size());
     c.distance.resize(active.size());
     const int iterations = m_settings.projection_iterations;
+    // Distances to 1e-12 relatively (energies far more precisely than the
+    // energy tolerance can see); the foot points themselves to ~1e-6 of the distance.
+    const double tolerance = 1e-12;
+    const double spacing2 = 1. / CGAL::square(double(m_settings.mesh_resolution)); // squared chart distance
     Located_point<Geom_traits> loc;
     for(std::size_t k = 0; k < active.size(); ++k)
     {
@@ -604,16 +625,23 @@ private:
       internal::Foot_point foot;
       if(previous != nullptr)
       {
-        foot = internal::refine_foot_point(model, p, previous->u[k], iterations);
-        if(locator().locate_closer_than(query, Point_3(foot.x[0], foot.x[1], foot.x[2]), loc))
+        foot = evaluated ? internal::refine_foot_point(model, p, previous->u[k], iterations, tolerance,
+                                                       &m_start_points[k], &m_start_jacobians[k])
+                         : internal::refine_foot_point(model, p, previous->u[k], iterations, tolerance);
+        // A closer tessellation point within a mesh spacing of the foot point
+        // (in the same chart) leads back to the same foot point: only one
+        // farther away can lead to another one.
+        if(locator().locate_closer_than(query, Point_3(foot.x[0], foot.x[1], foot.x[2]), loc) &&
+           !(loc.chart_point.chart == foot.u.chart &&
+             CGAL::square(loc.chart_point.x - foot.u.x) + CGAL::square(loc.chart_point.y - foot.u.y) <= spacing2))
         {
-          const internal::Foot_point w = internal::refine_foot_point(model, p, loc.chart_point, iterations);
+          const internal::Foot_point w = internal::refine_foot_point(model, p, loc.chart_point, iterations, tolerance);
           if(!(foot.squared_distance < w.squared_distance)) // ties go to the tessellation's start
             foot = w;
         }
       }
       else
-        foot = internal::refine_foot_point(model, p, locator().locate(query).chart_point, iterations);
+        foot = internal::refine_foot_point(model, p, locator().locate(query).chart_point, iterations, tolerance);
       c.u[k] = foot.u;
       const Vector_3 nv = model.normal(foot.u);
       c.normal[k] = Eigen::Vector3d(nv.x(), nv.y(), nv.z());
@@ -650,10 +678,13 @@ private:
   std::vector<Chart_mesh_type> m_charts;
   std::unique_ptr<Closest_point_locator<Geom_traits>> m_locator;
   bool m_tree_outdated = false; // the meshes moved since the locator's tree was built
+  std::vector<Eigen::Vector3d> m_start_points;                     // see attach()
+  std::vector<typename Model::Chart_jacobian> m_start_jacobians;  // see attach()
   std::vector<std::size_t> m_all, m_subset;
   bool m_use_all = true;
   std::vector<bool> m_active_parameters;
   Correspondences m_correspondences;     // of m_model, on all points or the subset
+  Correspondences m_scratch;             // those of mean_squared_distance() on the subset
   bool m_correspondences_valid = false;
   bool m_correspondences_all = false;
   double m_lambda = 1e-3;    // Gauss-Newton damping

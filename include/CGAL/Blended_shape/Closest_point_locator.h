@@ -170,8 +170,19 @@ struct Foot_point
 
 /// refine_closest_point(), also returning the model point and the squared
 /// distance at the result (computed as `(p - model.point(u)).squaredNorm()` would be).
+/// With `relative_tolerance` > 0 it also stops when a Gauss-Newton step
+/// would lower the squared distance by at most that fraction of it (the
+/// predicted decrease `g . step`): where the distance matters and the exact
+/// foot point does not (the fitter's correspondences, whose distance is only
+/// off by the square of the remaining tangential error), this saves the
+/// tail of the iteration, which converges only linearly away from the
+/// surface (at the rate distance x curvature).
+/// With `start_point` and `start_jacobian`, these are the model's point and
+/// chart Jacobian at `start` (saving their evaluation).
 template <class Model>
-Foot_point refine_foot_point(const Model& model, const Eigen::Vector3d& p, Chart_point start, int max_iterations)
+Foot_point refine_foot_point(const Model& model, const Eigen::Vector3d& p, Chart_point start, int max_iterations,
+                             double relative_tolerance = 0., const Eigen::Vector3d* start_point = nullptr,
+                             const typename Model::Chart_jacobian* start_jacobian = nullptr)
 {
   typedef typename Model::Chart_jacobian Chart_jacobian;
   auto eval = [&](const Chart_point& v, Chart_jacobian& D) {
@@ -180,7 +191,14 @@ Foot_point refine_foot_point(const Model& model, const Eigen::Vector3d& p, Chart
   };
   Chart_point u = start;
   Chart_jacobian J, Jv;
-  Eigen::Vector3d x = eval(u, J);
+  Eigen::Vector3d x;
+  if(start_point != nullptr && start_jacobian != nullptr)
+  {
+    x = *start_point;
+    J = *start_jacobian;
+  }
+  else
+    x = eval(u, J);
   double d2 = (p - x).squaredNorm();
   for(int it = 0; it < max_iterations && d2 > 0.; ++it)
   {
@@ -210,7 +228,7 @@ Foot_point refine_foot_point(const Model& model, const Eigen::Vector3d& p, Chart
       const double length2 = step.squaredNorm();
       // At the foot point to the accuracy that matters: a tangential error
       // of 1e-9 chart units changes the distance by ~1e-18 of the model's size.
-      if(!(length2 > 1e-18))
+      if(!(length2 > 1e-18) || (level == 0 && step.dot(Eigen::Vector2d(g0, g1)) <= relative_tolerance * d2))
       {
         converged = true;
         break;

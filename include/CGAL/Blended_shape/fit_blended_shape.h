@@ -215,6 +215,7 @@ auto fit_blended_shape(const PointRange& points, const NamedParameters& np = CGA
   rough.energy_tolerance = (std::max)(s.energy_tolerance, 1e-4);
   rough.force_tolerance = (std::max)(s.force_tolerance, 1e-2);
   rough.maximum_iterations = (std::min<std::size_t>)(s.maximum_iterations, 20);
+  rough.mesh_resolution = (std::max)(2, s.mesh_resolution / 2); // the mesh only seeds the analytic closest points
   Model start_model = make_initial_model(initial, 2);
   std::size_t candidate_iterations = 0;
   Fitting_status status;
