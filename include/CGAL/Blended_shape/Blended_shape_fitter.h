@@ -58,8 +58,8 @@ struct Fitting_settings
 {
   Integrator integrator = Integrator::Gauss_newton; ///< the integration scheme
   std::size_t maximum_iterations = 100;   ///< iterations over all phases
-  double energy_tolerance = 1e-7;         ///< relative energy decrease of one step
-  double force_tolerance = 1e-4;          ///< largest scaled parameter force, see Step_report::scaled_force
+  double energy_tolerance = 1e-10;        ///< relative energy decrease of one step
+  double force_tolerance = 1e-6;          ///< largest scaled parameter force, see Step_report::scaled_force
   std::size_t steady_iterations = 2;      ///< consecutive steps under both tolerances
   int mesh_resolution = 10;               ///< chart tessellation (rings from pole to equator)
   int projection_iterations = 10;         ///< at most this many Gauss-Newton steps from the mesh closest point to the surface's
@@ -430,6 +430,7 @@ public:
     };
     enter(phase);
     std::size_t steady = 0, in_phase = 0;
+    bool rechecked = false; // see recheck_correspondences(): once, at the first rest state on all points
     while(status.iterations < m_settings.maximum_iterations)
     {
       if(callback && !callback(double(status.iterations) / double(m_settings.maximum_iterations)))
@@ -463,12 +464,14 @@ public:
         enter(subset ? Fitting_phase::Subset : Fitting_phase::All_points);
       else if(phase == Fitting_phase::Subset)
         enter(Fitting_phase::All_points);
-      else
+      else if(rechecked || !recheck_correspondences())
       {
         status.converged = true;
         visitor.on_phase(Fitting_phase::Steady_state, status.iterations);
         break;
       }
+      else
+        rechecked = true;
     }
     move_pose_only(false);
     use_all_points(true);
@@ -587,6 +590,23 @@ private:
     m_correspondences_valid = true;
   }
 
+  // At a rest state: the foot points followed from step to step are local
+  // closest points; where the data point is near the medial axis (inside an
+  // edge of the model, say) another sheet of the surface may have become
+  // closer without the bounded search seeing it past the tessellation's chord
+  // error. Every point's tessellation closest point is projected too; true
+  // when that lowers the energy enough for the fit to go on (the rest state
+  // was one of the followed foot points, not of the closest ones).
+  bool recheck_correspondences()
+  {
+    const Correspondences& corr = correspondences_of_all_points();
+    const double before = true_energy(corr.distance, corr.scale);
+    Correspondences fresh = attach(m_model, m_all, &corr, false, true);
+    const double after = true_energy(fresh.distance, corr.scale);
+    set_correspondences(std::move(fresh), true);
+    return after < before * (1. - m_settings.energy_tolerance);
+  }
+
   const Correspondences& correspondences_of_all_points()
   {
     if(!m_correspondences_valid || !m_correspondences_all)
@@ -604,8 +624,11 @@ private:
   // artifact.
   // With `evaluated`, m_start_points and m_start_jacobians hold the model's
   // points and chart Jacobians at the previous chart points.
+  // With `search_everywhere` (and `previous`), the tessellation's closest
+  // point is projected too, whatever its distance, and the closer result wins.
   Correspondences attach(const Model& model, const std::vector<std::size_t>& active,
-                         const Correspondences* previous = nullptr, bool evaluated = false)
+                         const Correspondences* previous = nullptr, bool evaluated = false,
+                         bool search_everywhere = false)
   {
     position_meshes(model);
     Correspondences c;
@@ -631,9 +654,12 @@ private:
         // A closer tessellation point within a mesh spacing of the foot point
         // (in the same chart) leads back to the same foot point: only one
         // farther away can lead to another one.
-        if(locator().locate_closer_than(query, Point_3(foot.x[0], foot.x[1], foot.x[2]), loc) &&
-           !(loc.chart_point.chart == foot.u.chart &&
-             CGAL::square(loc.chart_point.x - foot.u.x) + CGAL::square(loc.chart_point.y - foot.u.y) <= spacing2))
+        if(search_everywhere)
+          loc = locator().locate(query);
+        if(search_everywhere ||
+           (locator().locate_closer_than(query, Point_3(foot.x[0], foot.x[1], foot.x[2]), loc) &&
+            !(loc.chart_point.chart == foot.u.chart &&
+              CGAL::square(loc.chart_point.x - foot.u.x) + CGAL::square(loc.chart_point.y - foot.u.y) <= spacing2)))
         {
           const internal::Foot_point w = internal::refine_foot_point(model, p, loc.chart_point, iterations, tolerance);
           if(!(foot.squared_distance < w.squared_distance)) // ties go to the tessellation's start

@@ -189,10 +189,14 @@ Foot_point refine_foot_point(const Model& model, const Eigen::Vector3d& p, Chart
     const auto x = model.point_and_chart_jacobian(v, D);
     return Eigen::Vector3d(x.x(), x.y(), x.z());
   };
-  Chart_point u = start;
+  // From the chart in which the start is canonical: a start on the rim of
+  // its chart (a tessellation point near a chart seam) would otherwise be
+  // stuck there by steps that leave the chart.
+  Chart_point u = model.canonical_chart_point(start);
+  const bool moved = u.chart != start.chart || u.x != start.x || u.y != start.y;
   Chart_jacobian J, Jv;
   Eigen::Vector3d x;
-  if(start_point != nullptr && start_jacobian != nullptr)
+  if(start_point != nullptr && start_jacobian != nullptr && !moved)
   {
     x = *start_point;
     J = *start_jacobian;
@@ -236,8 +240,12 @@ Foot_point refine_foot_point(const Model& model, const Eigen::Vector3d& p, Chart
       // A step this short that fails at full length fails on rounding alone
       // (the squared distance is only known to ~1e-13 relatively): halving it
       // cannot help.
-      const int halvings = (length2 < 1e-14) ? 1 : 4;
-      for(int half = 0; half < halvings && !improved; ++half, step *= 0.5)
+      // Next to a point where the chart map is singular (exponents above 1
+      // on both the equator and a meridian: both columns vanish) the
+      // Gauss-Newton step overshoots by orders of magnitude: keep halving
+      // down to that length.
+      const int halvings = (length2 < 1e-14) ? 1 : 40;
+      for(int half = 0; half < halvings && !improved && (half < 4 || step.squaredNorm() >= 1e-14); ++half, step *= 0.5)
       {
         Chart_point v(u.chart, u.x + step[0], u.y + step[1]);
         const Chart_domain dom = model.chart_domain(v.chart);

@@ -17,6 +17,8 @@
 #include <chrono>
 #include <functional>
 #include <memory>
+#include <stdexcept>
+#include <string>
 #include <vector>
 
 namespace CGAL {
@@ -54,20 +56,33 @@ Deformable_model<Superquadric_ellipsoid<GeomTraits>> make_initial_model(const El
   return Deformable_model<Superquadric_ellipsoid<GeomTraits>>(shape, c, internal::quaternion_from_matrix(R));
 }
 
+/// \ingroup PkgBlendedShapeFitting
+/// The number of similar superquadrics of similar_superquadric().
+constexpr int number_of_similar_superquadrics = 5;
+
 /*!
 \ingroup PkgBlendedShapeFitting
 A superquadric close to `model` in shape but in another basin of the fit
-(the "similar superquadrics" of superquadric recovery from partial views):
-its z axis exchanged with its x axis (`swap` = 0) or y axis (`swap` = 1),
-with e1 and e2 exchanged; or (`swap` = 2) its cross-section turned by 45
-degrees about z with e2 replaced by 2 - e2 and the section's axes averaged
-and stretched by 2^((1 - e2)/2) (a square seen across its diagonal is a
-diamond). Same place.
+(the "similar superquadrics" of superquadric recovery from partial views),
+in the same place:
+- `swap` = 0 or 1: its z axis exchanged with its x axis (0) or y axis (1),
+  with e1 and e2 exchanged;
+- `swap` = 2: its cross-section turned by 45 degrees about z with e2 replaced
+  by 2 - e2 and the section's axes averaged and stretched by 2^((1 - e2)/2)
+  (a square seen across its diagonal is a diamond);
+- `swap` = 3 or 4: swap 2 followed by swap 0 or 1 (a box whose square
+  section was taken for a diamond about the wrong axis needs both).
+\throws std::invalid_argument unless 0 <= swap < number_of_similar_superquadrics
 */
 template <class GeomTraits>
 Deformable_model<Superquadric_ellipsoid<GeomTraits>>
 similar_superquadric(const Deformable_model<Superquadric_ellipsoid<GeomTraits>>& model, int swap)
 {
+  if(swap < 0 || swap >= number_of_similar_superquadrics)
+    throw std::invalid_argument("similar_superquadric: swap must be in [0, " +
+                                std::to_string(number_of_similar_superquadrics) + ")");
+  if(swap > 2)
+    return similar_superquadric(similar_superquadric(model, 2), swap - 3);
   const auto q = model.shape().parameters();
   const Eigen::Matrix3d R0 = model.rotation();
   Eigen::Matrix3d R = R0;
@@ -168,8 +183,9 @@ topological evolution, i.e. parts and holes, come with the blending features.)
   `mesh_resolution`, `subset_size`, `rigid_first`, `robust_weighting`, `maximum_size_factor`,
   `try_all_axes` (`bool`, default `true`: fit roughly from each of the three choices
   of the primitive's z axis among the principal directions, see make_initial_model(),
-  on an eighth of the subset, at most 20 iterations each, and go on with the closest;
-  the iteration count includes these), and
+  on a 25th of the subset, at most 10 iterations each, and go on with the closest;
+  after the full fit, search its similar superquadrics, see similar_superquadric();
+  the iteration count includes these fits), and
   `reference_mesh` (a pointer to a `CGAL::Surface_mesh<Point_3>`: then the
   symmetric Chamfer distance to it is reported).
 
@@ -209,62 +225,95 @@ auto fit_blended_shape(const PointRange& points, const NamedParameters& np = CGA
   const auto initial = initialize_from_moments(points, CGAL::parameters::point_map(point_map));
   typedef Deformable_model<Superquadric_ellipsoid<Geom_traits>> Model;
   typedef Blended_shape_fitter<Model> Fitter;
-  // Each z-axis choice is fitted roughly on a small subset; the closest goes on.
+  // The short candidate fits: on a 25th of the subset (160 points by
+  // default: enough to tell basins apart), loose tolerances, at most 10 iterations.
   Fitting_settings rough = s;
-  rough.subset_size = (std::max<std::size_t>)(s.subset_size / 8, 200);
+  rough.subset_size = (std::max<std::size_t>)(s.subset_size / 25, 100);
   rough.energy_tolerance = (std::max)(s.energy_tolerance, 1e-4);
   rough.force_tolerance = (std::max)(s.force_tolerance, 1e-2);
-  rough.maximum_iterations = (std::min<std::size_t>)(s.maximum_iterations, 20);
+  rough.maximum_iterations = (std::min<std::size_t>)(s.maximum_iterations, 10);
   rough.mesh_resolution = (std::max)(2, s.mesh_resolution / 2); // the mesh only seeds the analytic closest points
-  Model start_model = make_initial_model(initial, 2);
+  // A rough fit of `m` on the rough subset (the same points for every
+  // candidate: same seed and subset size), with its mean squared distance there.
   std::size_t candidate_iterations = 0;
   Fitting_status status;
-  // the mean squared distance of start_model on the rough fits' subset (the
-  // same for every candidate: same points, seed and subset size)
-  double best_distance = HUGE_VAL;
+  auto rough_fit = [&](const Model& m, double& distance) {
+    Fitter candidate(points, m, rough, point_map);
+    status = candidate.run(visitor, callback, Fitting_phase::Subset);
+    candidate_iterations += status.iterations;
+    distance = candidate.mean_squared_distance(false);
+    return candidate.model();
+  };
+  // Each z-axis choice is fitted roughly; the closest goes on.
+  Model start_model = make_initial_model(initial, 2);
   if(all_axes)
   {
+    double best_distance = HUGE_VAL;
     for(int z_axis = 0; z_axis < 3 && !status.aborted; ++z_axis)
     {
-      Fitter candidate(points, make_initial_model(initial, z_axis), rough, point_map);
-      status = candidate.run(visitor, callback, Fitting_phase::Subset);
-      candidate_iterations += status.iterations;
-      const double d = candidate.mean_squared_distance(false);
+      double d;
+      const Model m = rough_fit(make_initial_model(initial, z_axis), d);
       if(d < best_distance) // strict: ties keep the earlier candidate, deterministically
       {
         best_distance = d;
-        start_model = candidate.model();
+        start_model = m;
       }
     }
   }
-  // Similar superquadrics of the winner (its z axis exchanged with x or y,
-  // the exponents swapped): partial views often leave the fit in the basin of
-  // the wrong one.
-  if(all_axes && !status.aborted)
-  {
-    const Model winner = start_model;
-    for(int swap = 0; swap < 3 && !status.aborted; ++swap)
-    {
-      Fitter candidate(points, similar_superquadric(winner, swap), rough, point_map);
-      status = candidate.run(visitor, callback, Fitting_phase::Subset);
-      candidate_iterations += status.iterations;
-      const double d = candidate.mean_squared_distance(false);
-      if(d < best_distance)
-      {
-        best_distance = d;
-        start_model = candidate.model();
-      }
-    }
-  }
-  Fitter fitter(points, start_model, s, point_map);
+  std::unique_ptr<Fitter> fitter = std::make_unique<Fitter>(points, start_model, s, point_map);
   Fitting_status final_status = status;
   if(!status.aborted)
-    final_status = fitter.run(visitor, callback);
+    final_status = fitter->run(visitor, callback);
+  // Partial views often leave the fit in the basin of a similar superquadric
+  // (its z axis exchanged with x or y, the exponents swapped, its
+  // cross-section turned by 45 degrees, or both; see similar_superquadric()), so the
+  // fit is compared with them, as EMS iterates its similarity search: each similar one is
+  // fitted roughly; one clearly closer to the rough subset than the fit is
+  // fitted fully, and kept if it ends closer to all points. At most three rounds.
+  if(all_axes)
+  {
+    double current = fitter->mean_squared_distance(true);
+    for(int round = 0; round < 3 && !final_status.aborted && !final_status.timed_out; ++round)
+    {
+      const Model fitted = fitter->model();
+      double reference;
+      {
+        Fitter probe(points, fitted, rough, point_map);
+        reference = probe.mean_squared_distance(false);
+      }
+      std::unique_ptr<Fitter> better;
+      for(int swap = 0; swap < number_of_similar_superquadrics && !status.aborted; ++swap)
+      {
+        double d;
+        const Model m = rough_fit(similar_superquadric(fitted, swap), d);
+        // Clearly closer: a rough fit of the subset alone beats the full
+        // fit there by a little even in the same basin.
+        if(status.aborted || !(d < 0.8 * reference))
+          continue;
+        auto challenger = std::make_unique<Fitter>(points, m, s, point_map);
+        const Fitting_status st = challenger->run(visitor, callback);
+        candidate_iterations += st.iterations;
+        const double full = challenger->mean_squared_distance(true);
+        if(st.aborted)
+          status.aborted = true;
+        else if(full < current)
+        {
+          current = full;
+          better = std::move(challenger);
+          final_status.converged = st.converged;
+        }
+      }
+      final_status.aborted = final_status.aborted || status.aborted;
+      if(!better)
+        break;
+      fitter = std::move(better);
+    }
+  }
   final_status.iterations += candidate_iterations;
   final_status.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 
-  Fit_result<Geom_traits> result{fitter.model(), initial, compute_fit_metrics(fitter, initial, final_status),
-                                 fitter.chart_meshes()};
+  Fit_result<Geom_traits> result{fitter->model(), initial, compute_fit_metrics(*fitter, initial, final_status),
+                                 fitter->chart_meshes()};
   if(reference != nullptr)
     result.metrics.chamfer_distance = symmetric_chamfer_distance(result.meshes, *reference);
   return result;
