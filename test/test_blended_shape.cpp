@@ -596,6 +596,57 @@ void test_points_outside_domains()
   }
 }
 
+// Placements are relative to the parent (sec. 3.5): moving or turning a
+// part moves the part attached to it rigidly with it, and the root placement
+// is the composition along the parents.
+template <class K>
+void test_placements_follow_parents()
+{
+  Shape<K> s = sphere<K>();
+  // component 1: the root's northern cap, split off; component 2: a part on it
+  s.split(0, 0, Region::make_parameters(0.05, -0.02, 0.55, 0.5, 0.2, 1., 0.), 0.06);
+  s.add_part(1, 0, Region::make_parameters(0.1, 0.05, 0.2, 0.18, 0.3, 0.85, 1.), 0.05,
+             BS::Superquadric_ellipsoid<K>(0.3, 0.25, 0.5, 0.7, 1.1), "superquadric_ellipsoid",
+             Eigen::Vector3d(0.1, 0.05, 1.2), Eigen::Vector4d(0.98, 0.1, -0.05, 0.1), 0,
+             Region::make_parameters(0., 0., 0.6, 0.6, 0., 1., 0.), 0.1);
+  BS_CHECK(s.parent(1) == 0 && s.parent(2) == 1 && s.parent(0) == Shape<K>::no_parent, "parents");
+  std::vector<BS::Shape_point> pts; // chart points of component 2 (a grid over both charts)
+  for(std::size_t chart = 0; chart < 2; ++chart)
+    for(int i = 0; i < 10; ++i)
+      for(int j = 0; j < 10; ++j)
+        pts.push_back(BS::Shape_point(2, BS::Chart_point(chart, 0.11 * i * std::cos(0.628 * j), 0.11 * i * std::sin(0.628 * j))));
+  const Shape<K> before = s;
+  // a rigid motion of component 1 relative to the root: a turn about its origin, then a shift
+  Eigen::VectorXd q = s.parameters();
+  const std::size_t o = s.component_offset(1);
+  const Eigen::Vector4d turn = Eigen::Vector4d(0.9, -0.2, 0.3, 0.1).normalized();
+  const Eigen::Vector3d shift(0.1, -0.3, 0.05);
+  q.segment<3>(Eigen::Index(o)) = shift;
+  q.segment<4>(Eigen::Index(o + 3)) = turn;
+  s.set_parameters(q);
+  const Eigen::Matrix3d R = BS::internal::rotation_matrix(turn);
+  double worst = 0.;
+  for(const BS::Shape_point& p : pts)
+  {
+    const Eigen::Vector3d expected = shift + R * eig<K>(before.component_point(p));
+    worst = (std::max)(worst, (eig<K>(s.component_point(p)) - expected).norm());
+  }
+  BS_CHECK(worst < 1e-12, "a part does not follow its parent's motion: off by " << worst);
+  BS_CHECK((s.root_translation(2) - (shift + R * before.root_translation(2))).norm() < 1e-12 &&
+             (s.root_rotation(2) - R * before.root_rotation(2)).norm() < 1e-12,
+           "root placement is not the composition along the parents");
+  // A blend may not add a component that precedes its base (parents first).
+  Shape<K> t = sphere<K>();
+  t.split(0, 0, Region::make_parameters(0.05, -0.02, 0.55, 0.5, 0.2, 1., 0.), 0.06);
+  bool refused = false;
+  try
+  {
+    t.append_blend(BS::Blend(t.blend(0).kind(), 1, t.blend(0).base_region(), 0, t.blend(0).added_side()), false);
+  }
+  catch(const std::invalid_argument&) { refused = true; }
+  BS_CHECK(refused, "a blend whose base follows its added component was accepted");
+}
+
 template <class K>
 void run(const char* kernel)
 {
@@ -608,6 +659,7 @@ void run(const char* kernel)
   for(const auto& c : configurations<K>())
     test_continuity<K>(c.first, c.second());
   test_unified_meshes<K>();
+  test_placements_follow_parents<K>();
 }
 
 } // namespace

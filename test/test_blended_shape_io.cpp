@@ -715,8 +715,9 @@ struct Io_tests
                  "no format", U);
     expect_error(with_value(text, "format", "\"mesh\""), {"format: expected \"blended_shape\"", "\"mesh\""},
                  "wrong format", U);
-    expect_error(with_value(text, "version", "2"), {"version: expected 1", "found a number 2"}, "wrong version", U);
-    expect_error(with_value(text, "version", "\"1\""), {"version: expected 1", "found a string"},
+    expect_error(with_value(text, "version", "1"), {"version: expected 2", "found a number 1"}, "older version", U);
+    expect_error(with_value(text, "version", "3"), {"version: expected 2", "found a number 3"}, "newer version", U);
+    expect_error(with_value(text, "version", "\"2\""), {"version: expected 2", "found a string"},
                  "version as a string", U);
     expect_error(replaced(text, "\"blends\": [", "\"colour\": \"red\",\n  \"blends\": ["),
                  {"unknown field \"colour\"", "format, version, components"}, "unknown top-level field", M);

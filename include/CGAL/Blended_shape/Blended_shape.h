@@ -57,9 +57,13 @@ A blended shape (sec. 3): components cut and glued by blends, nested so
 that every blend's base is the blended shape built so far (sec. 3.6).
 
 <b>Components.</b> Component 0 is the root; every other component has a
-rigid placement relative to the root's frame (sec. 3.5): a translation and
-a quaternion (normalized in use, as in `Deformable_model`), which are
-parameters of the shape. A component point is `t + R s(u)`.
+rigid placement relative to its parent (sec. 3.5), the base component of the
+blend that added it (for a hole, the base of its end 0): a translation and a
+quaternion (normalized in use, as in `Deformable_model`), which are
+parameters of the shape. A component point is `t + R s(u)` in its parent's
+frame; composed along the parents, `T + Q s(u)` in the root's frame
+(root_translation(), root_rotation()), so a part moves with the part it is
+attached to.
 
 <b>Domain.</b> The domain is the disjoint union of the components' charts
 glued by the primitives' own seams (`to_chart()`) and by the blends'
@@ -107,15 +111,15 @@ public:
   /// Number of parameters of a blend (eq. 29).
   static constexpr std::size_t number_of_blend_parameters = Ellipse_blending_region::number_of_parameters;
 
-  /// A component: the primitive and its placement.
+  /// A component: the primitive and its placement relative to its parent.
   class Component
   {
   public:
     /// The primitive.
     const Component_shape& shape() const { return *m_shape; }
-    /// The translation relative to the root.
+    /// The translation relative to the parent (Blended_shape::parent()).
     const Eigen::Vector3d& translation() const { return m_t; }
-    /// The quaternion (w, x, y, z) relative to the root.
+    /// The quaternion (w, x, y, z) relative to the parent.
     const Eigen::Vector4d& quaternion() const { return m_q; }
     /// The rotation matrix of quaternion().
     const Eigen::Matrix3d& rotation() const { return m_R; }
@@ -197,6 +201,17 @@ public:
   std::size_t number_of_blends() const { return m_blends.size(); }
   /// Blend `b`.
   const Blend& blend(std::size_t b) const { return m_blends.at(b); }
+  /// The parent of component `c` > 0: the base component of the blend that
+  /// added it (of end 0 for a hole), whose frame its placement is relative
+  /// to; `no_parent` for the root (and for a component no blend adds).
+  std::size_t parent(std::size_t c) const { return m_parent.at(c); }
+  /// See parent().
+  static constexpr std::size_t no_parent = std::size_t(-1);
+  /// The translation of component `c` in the root's frame (its placement
+  /// composed with those of its parents).
+  const Eigen::Vector3d& root_translation(std::size_t c) const { return m_root_t.at(c); }
+  /// The rotation of component `c` relative to the root's frame.
+  const Eigen::Matrix3d& root_rotation(std::size_t c) const { return m_root_R.at(c); }
   /// The holes.
   const std::vector<Hole_record>& holes() const { return m_holes; }
   /// The hole component of hole `h`.
@@ -450,7 +465,7 @@ public:
   /*!
   Splits component `c` along the ellipse `region` (parameters of eq. 29,
   `h` must be 0) of chart `chart` (sec. 4.1): the new component is a copy
-  of `c` with the same placement, which keeps the inside of the curve,
+  of `c` placed where `c` is (the identity relative to `c`, its parent), which keeps the inside of the curve,
   while `c` keeps the outside. Right after the split the surface is the same
   (up to rounding: `alpha x + (1 - alpha) x`). Returns the new blend.
   \throws std::invalid_argument if the region is invalid, leaves the chart,
@@ -467,7 +482,8 @@ public:
     added.set_chart(chart);
     Blended_shape copy(*this);
     const Component& k = m_components[c];
-    copy.m_components.push_back(Component(k.shape().clone(), k.m_t, k.m_q));
+    // the copy sits where c is: the identity relative to its parent c
+    copy.m_components.push_back(Component(k.shape().clone(), Eigen::Vector3d::Zero(), Eigen::Vector4d(1., 0., 0., 0.)));
     copy.m_blends.push_back(
       Blend(Blend_kind::Split, c, base, copy.m_components.size() - 1, Added_side::ellipse(added)));
     copy.validate_new_blend(copy.m_blends.size() - 1);
@@ -478,7 +494,8 @@ public:
 
   /*!
   Adds the primitive `part` (any model of `BlendedShapePrimitive`, stored
-  under `type_name`) with the placement `(translation, quaternion)`, blended
+  under `type_name`) with the placement `(translation, quaternion)` relative
+  to the frame of component `base`, its parent (sec. 3.5), blended
   gradually into component `base` (sec. 4.1): a disk region `base_region`
   (eq. 29, its `h` is set to 1: the part starts unexpressed) in chart
   `base_chart` of `base`, corresponding to the inside of the ellipse
@@ -578,10 +595,14 @@ public:
       phase[e] = (e == 0) ? -psi : psi;
     }
     Hole hole(mean_radius, mean_radius, 0.5 * length, 1., 1., 1., 1., Hole_domain::Two_disks);
+    // (mid, R) in the root's frame, placed relative to the parent: the first place's component
+    const std::size_t p = places[0].component;
+    const Eigen::Vector3d t_local = m_root_R[p].transpose() * (mid - m_root_t[p]);
+    const Eigen::Matrix3d R_local = m_root_R[p].transpose() * R;
 
     Blended_shape copy(*this);
     copy.m_components.push_back(
-      Component(make_component_shape(hole, "hole_component"), mid, internal::quaternion_from_matrix(R)));
+      Component(make_component_shape(hole, "hole_component"), t_local, internal::quaternion_from_matrix(R_local)));
     const std::size_t hc = copy.m_components.size() - 1, hole_index = copy.m_holes.size();
     Hole_record rec;
     rec.component = hc;
@@ -707,6 +728,11 @@ public:
     if(b.base_component() >= m_components.size() || b.added_component() >= m_components.size() ||
        b.added_component() == 0 || b.base_component() == b.added_component())
       throw std::invalid_argument("Blended_shape: a blend refers to a missing component");
+    // Placements are relative to parents, which must come first.
+    if(b.base_component() > b.added_component())
+      throw std::invalid_argument("Blended_shape: blend of base component " + std::to_string(b.base_component()) +
+                                  " adds component " + std::to_string(b.added_component()) +
+                                  "; a base must precede the components it adds");
     m_blends.push_back(b);
     try
     {
@@ -796,6 +822,7 @@ private:
     }
     for(std::size_t b = 0; b < m_blends.size(); ++b)
       m_blends[b].base_region().set_parameters(q.segment<7>(Eigen::Index(m_blend_offset[b])));
+    update_root_placements();
   }
 
   void update_layout()
@@ -817,6 +844,28 @@ private:
     m_fixed.assign(m_size, false);
     for(std::size_t i = 0; i < m_size; ++i)
       m_fixed[i] = compute_fixed(i);
+    m_parent.assign(m_components.size(), no_parent);
+    for(const Blend& B : m_blends)
+      if(m_parent[B.added_component()] == no_parent)
+        m_parent[B.added_component()] = B.base_component();
+    update_root_placements();
+  }
+
+  // T + Q of every component, in order: parents come first (a blend's base
+  // precedes its added component, see append_blend()).
+  void update_root_placements()
+  {
+    m_root_t.resize(m_components.size());
+    m_root_R.resize(m_components.size());
+    m_root_t[0].setZero();
+    m_root_R[0].setIdentity();
+    for(std::size_t c = 1; c < m_components.size(); ++c)
+    {
+      const Component& k = m_components[c];
+      const std::size_t p = (m_parent[c] == no_parent) ? 0 : m_parent[c];
+      m_root_t[c] = m_root_t[p] + m_root_R[p] * k.m_t;
+      m_root_R[c] = m_root_R[p] * k.m_R;
+    }
   }
 
   bool is_tube(std::size_t c) const
@@ -979,8 +1028,9 @@ private:
 
   static Point_3 to_point(const Eigen::Vector3d& x) { return Point_3(x.x(), x.y(), x.z()); }
 
-  // t + R s(u) of component c; with J, appends factor * (its Jacobian) and,
-  // with D, R ds/du.
+  // T + Q s(u) of component c in the root's frame; with J, appends factor *
+  // (its Jacobian: its shape, its placement and those of its ancestors) and,
+  // with D, Q ds/du.
   Eigen::Vector3d place(std::size_t c, const Chart_point& u, Sparse_jacobian* J, double factor,
                         Eigen::Matrix<double, 3, 2>* D) const
   {
@@ -990,29 +1040,37 @@ private:
     {
       Component_shape::Jacobian Js;
       s = k.shape().point_and_jacobian(u, Js);
-      Jacobian_block blk;
-      blk.first_column = m_component_offset[c];
-      if(c == 0)
-        blk.columns = factor * Js;
-      else
+      Jacobian_block shape_block;
+      shape_block.first_column = shape_offset(c);
+      shape_block.columns = factor * (m_root_R[c] * Js);
+      J->push_back(std::move(shape_block));
+      // Up the parents: with z the point in the frame of component a, a's
+      // placement moves it by Q_parent(a) (dt + dR z).
+      Eigen::Vector3d z = s;
+      for(std::size_t a = c; a != 0 && a != no_parent; a = m_parent[a])
       {
-        blk.columns.resize(3, Eigen::Index(number_of_placement_parameters) + Js.cols());
-        blk.columns.template leftCols<3>() = factor * Eigen::Matrix3d::Identity();
+        const Component& ka = m_components[a];
+        const std::size_t pa = (m_parent[a] == no_parent) ? 0 : m_parent[a];
+        const Eigen::Matrix3d& Qp = m_root_R[pa];
+        Jacobian_block blk;
+        blk.first_column = m_component_offset[a];
+        blk.columns.resize(3, Eigen::Index(number_of_placement_parameters));
+        blk.columns.template leftCols<3>() = factor * Qp;
         for(int m = 0; m < 4; ++m)
-          blk.columns.col(3 + m) = factor * (k.m_dR[std::size_t(m)] * s);
-        blk.columns.rightCols(Js.cols()) = factor * (k.m_R * Js);
+          blk.columns.col(3 + m) = factor * (Qp * (ka.m_dR[std::size_t(m)] * z));
+        J->push_back(std::move(blk));
+        z = ka.m_t + ka.m_R * z;
       }
-      J->push_back(std::move(blk));
     }
     if(D)
     {
       Component_shape::Chart_jacobian Ds;
       s = k.shape().point_and_chart_jacobian(u, Ds);
-      *D = k.m_R * Ds;
+      *D = m_root_R[c] * Ds;
     }
     else if(!J)
       s = k.shape().point(u);
-    return (c == 0) ? s : Eigen::Vector3d(k.m_t + k.m_R * s);
+    return m_root_t[c] + m_root_R[c] * s;
   }
 
   // s at a canonical point (eq. 3), with the sparse Jacobian (eq. 10, 11) if J.
@@ -1079,6 +1137,9 @@ private:
   std::vector<std::size_t> m_component_offset, m_blend_offset;
   std::size_t m_size = 0;
   std::vector<bool> m_fixed;
+  std::vector<std::size_t> m_parent;    // see parent()
+  std::vector<Eigen::Vector3d> m_root_t; // see root_translation()
+  std::vector<Eigen::Matrix3d> m_root_R; // see root_rotation()
 };
 
 } // namespace Blended_shapes

@@ -35,8 +35,10 @@ namespace Blended_shapes {
 
 /// \ingroup PkgBlendedShapeIO
 /// The version of the model file format that write_blended_shape_json() writes
-/// and read_blended_shape_json() reads.
-constexpr int blended_shape_file_version = 1;
+/// and read_blended_shape_json() reads. Version 2: placements are relative
+/// to the parent component (Blended_shape::parent()); in version 1 they were
+/// relative to the root.
+constexpr int blended_shape_file_version = 2;
 
 namespace internal {
 
