@@ -320,7 +320,7 @@ struct Io_tests
       s.finish_gradual_blend(b);
       add_hole(s, BS::Shape_point(0, BS::Chart_point(0, -0.5, 0.1)), BS::Shape_point(0, BS::Chart_point(1, -0.5, -0.1)));
       const std::size_t part = s.blend(b).added_component();
-      s.split(part, 0, region(1.5, 1.0, 0.3), 0.05);
+      s.split(part, 0, region(3.1, 3.2, 0.15), 0.05); // inside the part's retained ellipse
       // A second, still closed hole between the split piece and the root.
       s.add_hole(BS::Shape_point(1, BS::Chart_point(0, 0.5, 0.05)),
                  BS::Shape_point(0, BS::Chart_point(1, 0.05, -0.6)), 0.05, 0.015);
@@ -994,22 +994,45 @@ struct Io_tests
   }
 
   // A region moved by set_parameters() past its chart is still saved and loaded.
+  // A region may not be moved out of its chart (set_parameters() refuses,
+  // the shape unchanged), and a file with such a region, or with regions that
+  // meet, is refused with a message naming the blend.
   void test_moved_region()
   {
     Shape s = sphere();
     const std::size_t b = s.split(0, 0, Region::make_parameters(0.7, 0.1, 0.2, 0.15, 0.3, 0.8, 0.), 0.05);
-    Eigen::VectorXd q = s.parameters();
-    q[Eigen::Index(s.blend_offset(b) + Region::E_U)] = 1.15; // the strip now leaves the chart disk
-    s.set_parameters(q);
-    try
-    {
-      const std::string text = to_text(s);
-      check_same(s, from_text(text), kernel + ", moved region");
-    }
-    catch(const std::exception& e)
-    {
-      BS_CHECK(false, kernel << ": a model with a moved region does not load: " << e.what());
-    }
+    const Eigen::VectorXd before = s.parameters();
+    Eigen::VectorXd q = before;
+    q[Eigen::Index(s.blend_offset(b) + Region::E_U)] = 1.15; // the strip would leave the chart disk
+    bool refused = false;
+    try { s.set_parameters(q); }
+    catch(const std::invalid_argument& e) { refused = std::string(e.what()).find("leaves chart") != std::string::npos; }
+    BS_CHECK(refused && s.parameters() == before, kernel << ": a region moved out of its chart was accepted");
+    const std::string text = to_text(s);
+    const std::string e_u = "\"parameters\": [0.7,";
+    BS_CHECK(text.find(e_u) != std::string::npos, kernel << ": e_u not found in " << text);
+    if(text.find(e_u) == std::string::npos)
+      return;
+    std::string moved = text;
+    moved.replace(moved.find(e_u), e_u.size(), "\"parameters\": [1.15,");
+    bool rejected = false;
+    try { from_text(moved); }
+    catch(const BS::Input_error& e) { rejected = std::string(e.what()).find("leaves chart") != std::string::npos; }
+    BS_CHECK(rejected, kernel << ": a file with a region out of its chart was not rejected with a message");
+    // two splits whose regions meet
+    Shape t = sphere();
+    t.split(0, 0, Region::make_parameters(0.3, 0.1, 0.2, 0.15, 0.3, 0.8, 0.), 0.05);
+    t.split(0, 0, Region::make_parameters(-0.3, 0.1, 0.2, 0.15, 0.3, 0.8, 0.), 0.05);
+    std::string meeting = to_text(t);
+    const std::string minus = "\"parameters\": [-0.3,";
+    BS_CHECK(meeting.find(minus) != std::string::npos, kernel << ": e_u of the second split not found");
+    if(meeting.find(minus) == std::string::npos)
+      return;
+    meeting.replace(meeting.find(minus), minus.size(), "\"parameters\": [0.35,");
+    rejected = false;
+    try { from_text(meeting); }
+    catch(const BS::Input_error& e) { rejected = std::string(e.what()).find("meets the region of blend 0") != std::string::npos; }
+    BS_CHECK(rejected, kernel << ": a file with meeting regions was not rejected with a message");
   }
 
   void run()

@@ -263,8 +263,9 @@ public:
   }
 
   /// Sets all parameters. Fixed parameters must keep their values.
-  /// \throws std::invalid_argument on a wrong size, invalid values or a changed fixed
-  ///         parameter; the shape is then unchanged.
+  /// \throws std::invalid_argument on a wrong size, invalid values, a changed fixed
+  ///         parameter, or regions that leave their charts or meet (as when
+  ///         blends are added); the shape is then unchanged.
   void set_parameters(const Eigen::VectorXd& q)
   {
     if(q.size() != Eigen::Index(m_size))
@@ -277,6 +278,9 @@ public:
                                     " is fixed (see is_fixed_parameter())");
     Blended_shape copy(*this);
     copy.assign_parameters(q);
+    if(m_blends.size() > 0 && q.tail(Eigen::Index(m_size - m_blend_offset.front())) !=
+                                old.tail(Eigen::Index(m_size - m_blend_offset.front())))
+      copy.validate_regions();
     *this = std::move(copy);
   }
 
@@ -721,8 +725,7 @@ public:
     update_layout();
     return m_components.size() - 1;
   }
-  // check_regions = false (model files): set_parameters() does not recheck the
-  // regions, so a saved model's regions may no longer pass validate_new_blend().
+  // check_regions = false: the caller checks the regions later (check_blend_regions()).
   std::size_t append_blend(const Blend& b, bool check_regions = true)
   {
     if(b.base_component() >= m_components.size() || b.added_component() >= m_components.size() ||
@@ -747,6 +750,8 @@ public:
     update_layout();
     return m_blends.size() - 1;
   }
+  // The regions of blend b against those of the blends before it (see validate_blend()).
+  void check_blend_regions(std::size_t b) const { validate_blend(b, b); }
   void append_hole(const Hole_record& r)
   {
     if(r.component >= m_components.size() || !m_components[r.component].shape().template primitive<Hole>() ||
@@ -961,7 +966,9 @@ private:
     return s;
   }
 
-  // Where blend b's regions reach (for overlap checks): strip or disk.
+  // Where blend b reaches or cuts away (for overlap checks): its strips, its
+  // base disk or discarded part, and the part of an added component outside
+  // its ellipse region (a region there would be on no surface).
   bool reaches(std::size_t b, const Shape_point& p) const
   {
     const Blend& B = m_blends[b];
@@ -976,17 +983,35 @@ private:
     if(p.component == B.added_component())
     {
       const bool tube = is_tube(p.component);
-      if(s.to_chart(p.u, B.added_side().chart(tube), v))
-      {
-        const Region_side side = B.added_side().locate(v, tube, B.core_stretch()).side;
-        if(side == Region_side::Strip)
-          return true;
-      }
+      const bool ellipse = B.added_side().kind() == Added_side::Ellipse;
+      if(!s.to_chart(p.u, B.added_side().chart(tube), v))
+        return ellipse;
+      const Region_side side = B.added_side().locate(v, tube, B.core_stretch()).side;
+      if(side == Region_side::Strip || (ellipse && side == Region_side::Discarded))
+        return true;
     }
     return false;
   }
 
-  void validate_new_blend(std::size_t b)
+  bool share_a_component(std::size_t b, std::size_t o) const
+  {
+    const Blend &B = m_blends[b], &O = m_blends[o];
+    return B.base_component() == O.base_component() || B.base_component() == O.added_component() ||
+           B.added_component() == O.base_component() || B.added_component() == O.added_component();
+  }
+
+  // The regions of every blend: inside their charts and disjoint (see validate_blend()).
+  void validate_regions() const
+  {
+    for(std::size_t b = 0; b < m_blends.size(); ++b)
+      validate_blend(b, b);
+  }
+
+  void validate_new_blend(std::size_t b) const { validate_blend(b, m_blends.size()); }
+
+  // Blend b's regions (with their strips) are inside their charts, and meet
+  // no region of the blends before `others` (but b) that share a component with it.
+  void validate_blend(std::size_t b, std::size_t others) const
   {
     const Blend& B = m_blends[b];
     // The base region must stay inside its chart, with its strip.
@@ -997,20 +1022,21 @@ private:
     const Chart_domain dom = base.chart_domain(B.base_region().chart());
     for(const Shape_point& p : region_samples(b, true))
       if(!dom.contains(p.u.x, p.u.y))
-        throw std::invalid_argument("Blended_shape: the blending region (with its strip) leaves chart " +
-                                    std::to_string(p.u.chart) + " of component " + std::to_string(p.component) +
-                                    "; make it smaller or move it inside the chart");
+        throw std::invalid_argument("Blended_shape: the blending region of blend " + std::to_string(b) +
+                                    " (with its strip) leaves chart " + std::to_string(p.u.chart) + " of component " +
+                                    std::to_string(p.component) + "; make it smaller or move it inside the chart");
     if(B.added_side().kind() == Added_side::Ellipse)
     {
       const Component_shape& added = m_components[B.added_component()].shape();
       const Chart_domain ad = added.chart_domain(B.added_side().chart(false));
       for(const Shape_point& p : region_samples(b, false))
         if(!ad.contains(p.u.x, p.u.y))
-          throw std::invalid_argument("Blended_shape: the added component's region leaves its chart");
+          throw std::invalid_argument("Blended_shape: the added component's region of blend " + std::to_string(b) +
+                                      " leaves its chart");
     }
-    for(std::size_t o = 0; o < m_blends.size(); ++o)
+    for(std::size_t o = 0; o < others; ++o)
     {
-      if(o == b)
+      if(o == b || !share_a_component(b, o))
         continue;
       bool meet = false;
       for(bool side : {true, false})
@@ -1021,8 +1047,9 @@ private:
           meet = meet || reaches(b, p);
       }
       if(meet)
-        throw std::invalid_argument("Blended_shape: the new blending region meets the region of blend " +
-                                    std::to_string(o) + "; regions of different blends must be disjoint");
+        throw std::invalid_argument("Blended_shape: the region of blend " + std::to_string(b) + " meets the region of blend " +
+                                    std::to_string(o) + " or lies where it cuts the surface away; regions of "
+                                    "different blends must be disjoint and on the surface");
     }
   }
 

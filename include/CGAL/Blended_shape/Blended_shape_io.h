@@ -684,7 +684,7 @@ private:
           if(!(stretch > 0.))
             fail(stpath, "expected a positive number");
         }
-        shape.append_blend(Blend(kind, base, region, added, *side, hole, stretch), false);
+        shape.append_blend(Blend(kind, base, region, added, *side, hole, stretch), false); // regions: below
       }
       catch(const std::invalid_argument& e)
       {
@@ -768,6 +768,19 @@ private:
              "the component is added by " + std::to_string(added_by[c]) + " blends, expected " +
                std::to_string(expected) +
                " (every component but the root is added by one blend, a hole's component by two, one per end)");
+    }
+    // The regions, once the structure is known to be sound: inside their
+    // charts, disjoint, and on the surface (what Blended_shape maintains).
+    for(std::size_t b = 0; b < nb; ++b)
+    {
+      try
+      {
+        shape.check_blend_regions(b);
+      }
+      catch(const std::invalid_argument& e)
+      {
+        fail(element_path("blends", b), e.what());
+      }
     }
     return shape;
   }
