@@ -4,6 +4,7 @@
 // invariance; continuity across strip boundaries; the quotient's canonical
 // points; evolution errors. Both supported kernels.
 #include "test_util.h"
+#include "blended_shape_test_util.h"
 
 #include <CGAL/Blended_shape/Blended_shape.h>
 #include <CGAL/Blended_shape/Blended_shape_mesh.h>
@@ -29,42 +30,15 @@ namespace BS = CGAL::Blended_shapes;
 
 namespace {
 
+using blended_shape_test::set_parameter;
+using blended_shape_test::perturb_component;
+
 typedef BS::Ellipse_blending_region Region;
 
 template <class K>
 Eigen::Vector3d eig(const typename K::Point_3& p)
 {
   return Eigen::Vector3d(CGAL::to_double(p.x()), CGAL::to_double(p.y()), CGAL::to_double(p.z()));
-}
-
-// Sets one named parameter ("c1.a1", "b0.h", ...) through set_parameters.
-template <class Shape>
-void set_parameter(Shape& s, const std::string& name, double value)
-{
-  Eigen::VectorXd q = s.parameters();
-  for(std::size_t i = 0; i < s.number_of_parameters(); ++i)
-    if(s.parameter_name(i) == name)
-    {
-      q[Eigen::Index(i)] = value;
-      s.set_parameters(q);
-      return;
-    }
-  throw std::logic_error("no parameter " + name);
-}
-
-// Moves and reshapes component c a little (so that blends join different shapes).
-template <class Shape>
-void perturb_component(Shape& s, std::size_t c, double amount)
-{
-  Eigen::VectorXd q = s.parameters();
-  const std::size_t o = s.component_offset(c);
-  q[Eigen::Index(o)] += 0.07 * amount;
-  q[Eigen::Index(o + 1)] -= 0.05 * amount;
-  q[Eigen::Index(o + 4)] += 0.08 * amount; // quaternion x: a small rotation
-  const std::size_t so = s.shape_offset(c);
-  q[Eigen::Index(so)] *= 1. + 0.15 * amount;
-  q[Eigen::Index(so + 1)] *= 1. - 0.1 * amount;
-  s.set_parameters(q);
 }
 
 template <class K>

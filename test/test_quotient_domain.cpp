@@ -8,6 +8,7 @@
 // in space and far on the surface); metric properties; bad input. Both
 // supported kernels.
 #include "test_util.h"
+#include "blended_shape_test_util.h"
 
 #include <CGAL/Blended_shape/Blended_shape.h>
 #include <CGAL/Blended_shape/Blended_shape_mesh.h>
@@ -39,6 +40,9 @@ namespace BS = CGAL::Blended_shapes;
 
 namespace {
 
+using blended_shape_test::set_parameter;
+using blended_shape_test::perturb_component;
+
 typedef BS::Ellipse_blending_region Region;
 
 #ifdef BLENDED_SHAPE_REDUCED_TESTS
@@ -58,39 +62,11 @@ Eigen::Vector3d eig(const typename K::Point_3& p)
   return Eigen::Vector3d(CGAL::to_double(p.x()), CGAL::to_double(p.y()), CGAL::to_double(p.z()));
 }
 
-template <class Sh>
-void set_parameter(Sh& s, const std::string& name, double value)
-{
-  Eigen::VectorXd q = s.parameters();
-  for(std::size_t i = 0; i < s.number_of_parameters(); ++i)
-    if(s.parameter_name(i) == name)
-    {
-      q[Eigen::Index(i)] = value;
-      s.set_parameters(q);
-      return;
-    }
-  throw std::logic_error("no parameter " + name);
-}
-
 // The set-ups of test_blended_shape.
 template <class K>
 Shape<K> ellipsoid()
 {
   return Shape<K>(BS::Superquadric_ellipsoid<K>(1.0, 0.9, 1.1, 0.8, 1.1));
-}
-
-template <class K>
-void perturb_component(Shape<K>& s, std::size_t c, double amount)
-{
-  Eigen::VectorXd q = s.parameters();
-  const std::size_t o = s.component_offset(c);
-  q[Eigen::Index(o)] += 0.07 * amount;
-  q[Eigen::Index(o + 1)] -= 0.05 * amount;
-  q[Eigen::Index(o + 4)] += 0.08 * amount;
-  const std::size_t so = s.shape_offset(c);
-  q[Eigen::Index(so)] *= 1. + 0.15 * amount;
-  q[Eigen::Index(so + 1)] *= 1. - 0.1 * amount;
-  s.set_parameters(q);
 }
 
 // A split whose region crosses the equator (in chart 0's margin), and a
