@@ -5,7 +5,8 @@
 // points; evolution: add_part / add_hole at h = 1 and remove_component()
 // move no point, removal renumbers, every documented error throws and leaves
 // the shape unchanged, regions in discarded parts are refused, a part on a
-// part. Both supported kernels.
+// part; the per-component pieces (sec. 3.3) against a brute-force
+// classification. Both supported kernels.
 #include "test_util.h"
 #include "blended_shape_test_util.h"
 
@@ -1068,6 +1069,180 @@ void test_part_on_a_part()
            "part on a part: the part's top is at " << top.transpose());
 }
 
+// ---------------------------------------------------------------------------
+// Per-component pieces (sec. 3.3, Blended_shape_pieces).
+
+struct Pieces_check
+{
+  std::size_t faces = 0, kept = 0, mismatches = 0, bad_positions = 0, omitted_touching = 0;
+  std::size_t chord_faces = 0;
+  double worst_chord_ratio = 0., worst_chart_point = 0.;
+  std::vector<std::vector<bool>> retained;
+};
+
+// Checks `pieces` against `s` by brute force:
+// - one piece per chart of every component, in order;
+// - every vertex at s.point() of its chart point (bit for bit);
+// - a face is kept iff one of its corners is on the surface (the documented
+//   rule: faces wholly in a discarded part are omitted);
+// - kept faces map barycentric points back to the domain: chart_point(f, b)
+//   is the interpolation of the corners' chart coordinates (unwrapped here
+//   independently), and where the face lies on the surface (corners, edge
+//   midpoints and the sample on it), s there is within the chord error of
+//   the flat face: |s(u(b)) - sum b_i x_i| <= 2 * 4 (b0 b1 + b1 b2 + b2 b0)
+//   * (the largest edge sagitta |s(mid) - (x_i + x_j) / 2|), twice what a
+//   quadratic map gives.
+template <class K>
+Pieces_check check_pieces(const std::string& name, const Shape<K>& s, const BS::Blended_shape_pieces<K>& pieces)
+{
+  Pieces_check r;
+  std::size_t expected = 0;
+  for(std::size_t c = 0; c < s.number_of_components(); ++c)
+    for(std::size_t ch = 0; ch < s.component(c).shape().number_of_charts(); ++ch, ++expected)
+      BS_CHECK(expected < pieces.pieces().size() && pieces.pieces()[expected].component == c &&
+                 pieces.pieces()[expected].mesh.chart_index() == ch,
+               name << ": piece " << expected << " is not chart " << ch << " of component " << c);
+  BS_CHECK(pieces.pieces().size() == expected, name << ": " << pieces.pieces().size() << " pieces, expected " << expected);
+  const std::array<std::array<double, 3>, 4> samples = {
+    {{{1. / 3., 1. / 3., 1. / 3.}}, {{2. / 3., 1. / 6., 1. / 6.}}, {{1. / 6., 2. / 3., 1. / 6.}}, {{1. / 6., 1. / 6., 2. / 3.}}}};
+  for(const auto& piece : pieces.pieces())
+  {
+    const auto& m = piece.mesh.mesh();
+    const BS::Chart_domain dom = piece.mesh.domain();
+    std::vector<bool> on(m.number_of_vertices());
+    for(auto v : m.vertices())
+    {
+      const BS::Shape_point p(piece.component, piece.mesh.chart_point(v));
+      on[std::size_t(v)] = s.is_on_surface(p);
+      const Eigen::Vector3d x = eig<K>(s.point(p)), y = eig<K>(m.point(v));
+      r.bad_positions += (x == y) ? 0 : 1;
+    }
+    r.retained.push_back(piece.retained);
+    BS_CHECK(piece.retained.size() == m.number_of_faces(), name << ": a classification per face expected");
+    auto eval = [&](double x, double y) {
+      return eig<K>(s.point(BS::Shape_point(piece.component, BS::Chart_point(piece.mesh.chart_index(), x, y))));
+    };
+    auto surface = [&](double x, double y) {
+      return s.is_on_surface(BS::Shape_point(piece.component, BS::Chart_point(piece.mesh.chart_index(), x, y)));
+    };
+    for(auto f : m.faces())
+    {
+      ++r.faces;
+      const auto vs = piece.mesh.face_vertices(f);
+      bool any = false;
+      std::array<Eigen::Vector2d, 3> u;
+      std::array<Eigen::Vector3d, 3> x;
+      for(int i = 0; i < 3; ++i)
+      {
+        any = any || on[std::size_t(vs[std::size_t(i)])];
+        const BS::Chart_point c = piece.mesh.chart_point(vs[std::size_t(i)]);
+        u[std::size_t(i)] = Eigen::Vector2d(c.x, c.y);
+        x[std::size_t(i)] = eig<K>(m.point(vs[std::size_t(i)]));
+      }
+      const bool kept = std::size_t(f) < piece.retained.size() && piece.retained[std::size_t(f)];
+      r.mismatches += (kept == any) ? 0 : 1;
+      // Unwrap the periodic coordinates toward corner 0 (independently of Chart_mesh).
+      const double period[2] = {dom.x_period(), dom.y_period()};
+      for(int i = 1; i < 3; ++i)
+        for(int k = 0; k < 2; ++k)
+          if(period[k] > 0.)
+            u[std::size_t(i)][k] -= period[k] * std::round((u[std::size_t(i)][k] - u[0][k]) / period[k]);
+      if(!kept)
+      {
+        // Wholly discarded: the centroid and the edge midpoints too.
+        const Eigen::Vector2d g = (u[0] + u[1] + u[2]) / 3.;
+        bool touching = surface(g.x(), g.y());
+        for(int i = 0; i < 3; ++i)
+        {
+          const Eigen::Vector2d mid = 0.5 * (u[std::size_t(i)] + u[std::size_t((i + 1) % 3)]);
+          touching = touching || surface(mid.x(), mid.y());
+        }
+        r.omitted_touching += touching ? 1 : 0;
+        continue;
+      }
+      ++r.kept;
+      bool smooth = on[std::size_t(vs[0])] && on[std::size_t(vs[1])] && on[std::size_t(vs[2])];
+      double sagitta = 0.;
+      for(int i = 0; i < 3 && smooth; ++i)
+      {
+        const std::size_t a = std::size_t(i), b = std::size_t((i + 1) % 3);
+        const Eigen::Vector2d mid = 0.5 * (u[a] + u[b]);
+        smooth = smooth && surface(mid.x(), mid.y());
+        sagitta = std::max(sagitta, (eval(mid.x(), mid.y()) - 0.5 * (x[a] + x[b])).norm());
+      }
+      for(const auto& b : samples)
+      {
+        const Eigen::Vector2d ub = b[0] * u[0] + b[1] * u[1] + b[2] * u[2];
+        const BS::Chart_point cp = piece.mesh.chart_point(f, b);
+        const Eigen::Vector3d xb = eval(ub.x(), ub.y());
+        r.worst_chart_point = std::max(r.worst_chart_point, (eval(cp.x, cp.y) - xb).norm() / std::max(1., xb.norm()));
+        if(!smooth || !surface(ub.x(), ub.y()))
+          continue;
+        const Eigen::Vector3d flat = b[0] * x[0] + b[1] * x[1] + b[2] * x[2];
+        const double p2 = 4. * (b[0] * b[1] + b[1] * b[2] + b[2] * b[0]) * sagitta;
+        r.worst_chord_ratio = std::max(r.worst_chord_ratio, ((xb - flat).norm() - 1e-12 * std::max(1., xb.norm())) /
+                                                                std::max(p2, 1e-300));
+      }
+      r.chord_faces += smooth ? 1 : 0;
+    }
+  }
+  std::cout << "  pieces " << name << ": " << r.faces << " faces, " << r.kept << " kept (" << r.chord_faces
+            << " wholly on the surface); largest (deviation from the face) / (quadratic chord bound) "
+            << r.worst_chord_ratio << ", chart_point(f, b) off by " << r.worst_chart_point << std::endl;
+  BS_CHECK(r.bad_positions == 0, name << ": " << r.bad_positions << " vertices not at s(chart point)");
+  BS_CHECK(r.mismatches == 0, name << ": " << r.mismatches << " faces classified against the rule");
+  BS_CHECK(r.omitted_touching == 0, name << ": " << r.omitted_touching << " omitted faces reach the surface");
+  BS_CHECK(r.worst_chart_point <= 1e-12, name << ": chart_point(f, b) is not the barycentric point of the face");
+  BS_CHECK(r.worst_chord_ratio <= 2., name << ": a face is " << r.worst_chord_ratio
+                                           << " times the quadratic chord bound away from the surface");
+  BS_CHECK(r.chord_faces > r.kept / 2, name << ": only " << r.chord_faces << " faces checked against the surface");
+  return r;
+}
+
+template <class K>
+void test_pieces()
+{
+  const int resolution = 12;
+  for(const auto& c : configurations<K>())
+  {
+    const Shape<K> s = c.second();
+    const BS::Blended_shape_pieces<K> pieces(s, resolution);
+    const Pieces_check r = check_pieces<K>(c.first, s, pieces);
+    if(c.first == "split" || c.first == "hole_tube")
+      BS_CHECK(r.kept < r.faces, c.first << ": no face omitted");
+  }
+  // Moving a region (e_u of the split's blend) and update(): the
+  // classification follows the new region, as a fresh tessellation does.
+  Shape<K> s = configurations<K>()["split"]();
+  BS::Blended_shape_pieces<K> pieces(s, resolution);
+  const Pieces_check before = check_pieces<K>("split", s, pieces);
+  set_parameter(s, "b0.e_u", s.blend(0).base_region().parameters()[0] + 0.15);
+  set_parameter(s, "b0.e_2", s.blend(0).base_region().parameters()[3] * 0.8);
+  pieces.update(s);
+  const Pieces_check after = check_pieces<K>("split, region moved, update()", s, pieces);
+  std::size_t changed[2] = {0, 0};
+  for(std::size_t p = 0; p < before.retained.size() && p < after.retained.size(); ++p)
+    for(std::size_t f = 0; f < before.retained[p].size() && f < after.retained[p].size(); ++f)
+      changed[pieces.pieces()[p].component == 0 ? 0 : 1] += (before.retained[p][f] != after.retained[p][f]) ? 1 : 0;
+  std::cout << "  region moved: " << changed[0] << " faces of the base and " << changed[1]
+            << " of the split-off cap changed class" << std::endl;
+  BS_CHECK(changed[0] > 0, "moving the region changed no face of the base");
+  const BS::Blended_shape_pieces<K> fresh(s, resolution);
+  std::size_t differ = 0;
+  for(std::size_t p = 0; p < fresh.pieces().size() && p < pieces.pieces().size(); ++p)
+  {
+    differ += fresh.pieces()[p].retained == pieces.pieces()[p].retained ? 0 : 1;
+    for(auto v : fresh.pieces()[p].mesh.mesh().vertices())
+      differ += fresh.pieces()[p].mesh.mesh().point(v) == pieces.pieces()[p].mesh.mesh().point(v) ? 0 : 1;
+  }
+  BS_CHECK(differ == 0 && fresh.pieces().size() == pieces.pieces().size(),
+           "update() after moving a region differs from a fresh tessellation (" << differ << ")");
+  // A structural change (a further split) re-tessellates on update().
+  s.split(0, 1, Region::make_parameters(0., 0., 0.3, 0.25, 0., 0.9, 0.), 0.06);
+  pieces.update(s);
+  check_pieces<K>("split, then a second split, update()", s, pieces);
+}
+
 template <class K>
 void run(const char* kernel)
 {
@@ -1086,6 +1261,7 @@ void run(const char* kernel)
   test_evolution_errors<K>();
   test_region_in_discarded_part<K>();
   test_part_on_a_part<K>();
+  test_pieces<K>();
 }
 
 } // namespace
