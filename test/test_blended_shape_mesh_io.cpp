@@ -8,6 +8,7 @@
 // cannot be built) must throw and leave no file, and must not touch an
 // existing one. Both supported kernels.
 #include "test_util.h"
+#include "blended_shape_test_util.h"
 
 // The umbrella header: it compiles on its own and brings everything used here.
 #include <CGAL/Blended_shape.h>
@@ -41,6 +42,8 @@ namespace fs = std::filesystem;
 
 namespace {
 
+using blended_shape_test::set_parameter;
+
 typedef BS::Ellipse_blending_region Region;
 
 bool same_bits(double a, double b) { return std::memcmp(&a, &b, sizeof(double)) == 0; }
@@ -62,20 +65,6 @@ std::set<std::string> listing(const fs::path& dir)
   for(const fs::directory_entry& e : fs::directory_iterator(dir))
     names.insert(e.path().filename().string());
   return names;
-}
-
-template <class Shape>
-void set_parameter(Shape& s, const std::string& name, double value)
-{
-  Eigen::VectorXd q = s.parameters();
-  for(std::size_t i = 0; i < s.number_of_parameters(); ++i)
-    if(s.parameter_name(i) == name)
-    {
-      q[Eigen::Index(i)] = value;
-      s.set_parameters(q);
-      return;
-    }
-  throw std::logic_error("no parameter " + name);
 }
 
 template <class K>

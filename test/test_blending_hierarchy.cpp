@@ -7,6 +7,7 @@
 // two parts, two holes, blends listed out of order, a loose component.
 // Both supported kernels.
 #include "test_util.h"
+#include "blended_shape_test_util.h"
 
 #include <CGAL/Blended_shape/Blending_hierarchy.h>
 
@@ -35,6 +36,8 @@ namespace BS = CGAL::Blended_shapes;
 
 namespace {
 
+using blended_shape_test::set_parameter;
+
 typedef BS::Ellipse_blending_region Region;
 typedef BS::Blending_hierarchy Hierarchy;
 typedef Hierarchy::Graph Graph;
@@ -47,21 +50,6 @@ template <class K>
 Shape<K> sphere(double e1 = 0.8, double e2 = 1.1)
 {
   return Shape<K>(BS::Superquadric_ellipsoid<K>(1.0, 0.9, 1.1, e1, e2));
-}
-
-// Sets one named parameter ("b0.h", ...) through set_parameters.
-template <class K>
-void set_parameter(Shape<K>& s, const std::string& name, double value)
-{
-  Eigen::VectorXd q = s.parameters();
-  for(std::size_t i = 0; i < s.number_of_parameters(); ++i)
-    if(s.parameter_name(i) == name)
-    {
-      q[Eigen::Index(i)] = value;
-      s.set_parameters(q);
-      return;
-    }
-  throw std::logic_error("no parameter " + name);
 }
 
 template <class K>

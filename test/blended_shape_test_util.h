@@ -1,0 +1,50 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
+// Helpers shared by the blended-shape test programs: setting one named
+// parameter, and moving and reshaping a component a little.
+#ifndef CGAL_BLENDED_SHAPE_BLENDED_SHAPE_TEST_UTIL_H
+#define CGAL_BLENDED_SHAPE_BLENDED_SHAPE_TEST_UTIL_H
+
+#include <Eigen/Core>
+
+#include <cstddef>
+#include <stdexcept>
+#include <string>
+
+namespace blended_shape_test {
+
+// Sets one named parameter ("c1.a1", "b0.h", ...) of a Blended_shape through
+// set_parameters(). \throws std::logic_error if there is no such parameter.
+template <class Shape>
+void set_parameter(Shape& s, const std::string& name, double value)
+{
+  Eigen::VectorXd q = s.parameters();
+  for(std::size_t i = 0; i < s.number_of_parameters(); ++i)
+    if(s.parameter_name(i) == name)
+    {
+      q[Eigen::Index(i)] = value;
+      s.set_parameters(q);
+      return;
+    }
+  throw std::logic_error("no parameter " + name);
+}
+
+// Moves and reshapes non-root component c a little (so that blends join
+// different shapes): its translation, a small rotation (quaternion x) and
+// its first two shape parameters.
+template <class Shape>
+void perturb_component(Shape& s, std::size_t c, double amount)
+{
+  Eigen::VectorXd q = s.parameters();
+  const std::size_t o = s.component_offset(c);
+  q[Eigen::Index(o)] += 0.07 * amount;
+  q[Eigen::Index(o + 1)] -= 0.05 * amount;
+  q[Eigen::Index(o + 4)] += 0.08 * amount; // quaternion x: a small rotation
+  const std::size_t so = s.shape_offset(c);
+  q[Eigen::Index(so)] *= 1. + 0.15 * amount;
+  q[Eigen::Index(so + 1)] *= 1. - 0.1 * amount;
+  s.set_parameters(q);
+}
+
+} // namespace blended_shape_test
+
+#endif
