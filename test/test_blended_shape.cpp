@@ -262,8 +262,8 @@ void test_jacobian(const std::string& name, Shape<K> s, std::mt19937& rng)
     steps.push_back(h);
   }
   std::size_t counts[3] = {0, 0, 0};
-  double worst = 0.;
-  std::string worst_what;
+  double worst = 0., worst_chart = 0.;
+  std::string worst_what, worst_chart_what;
   for(const BS::Shape_point& p0 : pts)
   {
     const std::optional<BS::Shape_point> cp = s.canonical_point(p0);
@@ -276,6 +276,33 @@ void test_jacobian(const std::string& name, Shape<K> s, std::mt19937& rng)
     ++counts[place];
     const Eigen::MatrixXd J = s.dense_jacobian(*cp);
     const double scale = eig<K>(s.point(*cp)).norm();
+    // The chart Jacobian (ds/du at the canonical point) against central
+    // differences of point() in the canonical point's chart.
+    {
+      Eigen::Matrix<double, 3, 2> D;
+      BS::Shape_point c2;
+      s.point_and_chart_jacobian(p0, D, &c2);
+      BS_CHECK(c2.component == cp->component && c2.u.chart == cp->u.chart && c2.u.x == cp->u.x && c2.u.y == cp->u.y,
+               name << ": point_and_chart_jacobian() reports another canonical point");
+      const double h = 1e-6;
+      for(int k = 0; k < 2; ++k)
+      {
+        auto at = [&](double sign) {
+          return eig<K>(s.point(BS::Shape_point(cp->component, BS::Chart_point(cp->u.chart, cp->u.x + (k == 0 ? sign * h : 0.),
+                                                                                 cp->u.y + (k == 1 ? sign * h : 0.)))));
+        };
+        const Eigen::Vector3d fd = (at(1.) - at(-1.)) / (2. * h);
+        const double err = (D.col(k) - fd).norm() / std::max(fd.norm(), 1e-4 * scale);
+        if(err > worst_chart)
+        {
+          worst_chart = err;
+          std::ostringstream w;
+          w << "d/du" << k << " at component " << cp->component << " chart " << cp->u.chart << " (" << cp->u.x << ", "
+            << cp->u.y << "), place " << place << ": analytic " << D.col(k).transpose() << " vs FD " << fd.transpose();
+          worst_chart_what = w.str();
+        }
+      }
+    }
     for(std::size_t i = 0; i < s.number_of_parameters(); ++i)
     {
       if(s.is_fixed_parameter(i))
@@ -297,8 +324,9 @@ void test_jacobian(const std::string& name, Shape<K> s, std::mt19937& rng)
     }
   }
   std::cout << "  " << name << ": " << counts[Plain] << " plain, " << counts[Strip] << " strip, " << counts[Disk]
-            << " disk points; worst relative Jacobian error " << worst << std::endl;
+            << " disk points; worst relative Jacobian error " << worst << ", chart Jacobian " << worst_chart << std::endl;
   BS_CHECK(worst < 1e-5, name << ": Jacobian error " << worst << ": " << worst_what);
+  BS_CHECK(worst_chart < 1e-5, name << ": chart Jacobian error " << worst_chart << ": " << worst_chart_what);
   BS_CHECK(counts[Strip] >= std::size_t(per_blend), name << ": too few strip points");
   BS_CHECK(counts[Strip] + counts[Disk] >= blended_points, name << ": too few points in strips and disks");
 }

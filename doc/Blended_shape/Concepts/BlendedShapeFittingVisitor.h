@@ -17,9 +17,10 @@ add hooks for splits and holes, with empty defaults in
 `fit_blended_shape()` takes the visitor by value (named parameters are copied):
 a visitor that collects data should hold a pointer or a reference to where
 the data goes. With its default `try_all_axes = true`, `fit_blended_shape()`
-runs four fits in a row, three short ones (one per choice of the primitive's
-`z` axis, each ending with the `Subset` phase) and the final one; the
-iteration numbers start from 0 in each.
+runs several fits in a row: three short ones (one per choice of the
+primitive's `z` axis, each ending with the `Subset` phase), the full one, then
+short fits of its similar superquadrics and full fits of those that come out
+clearly closer (see the manual); the iteration numbers start from 0 in each.
 
 \cgalHasModelsBegin
 \cgalHasModels{CGAL::Blended_shapes::Default_fitting_visitor}

@@ -297,6 +297,22 @@ public:
     return prefix + m_components[a.index].shape().parameter_info(a.local).name;
   }
 
+  /// The kind of parameter `i`: a placement's translation is a length, its
+  /// quaternion and the region parameters (chart units) are dimensionless,
+  /// and a component's shape parameters are of their primitive's kinds.
+  Parameter_kind parameter_kind(std::size_t i) const
+  {
+    const Parameter_address a = address(i);
+    if(a.is_blend)
+      return Parameter_kind::Dimensionless;
+    if(a.is_placement)
+      return a.local < 3 ? Parameter_kind::Length : Parameter_kind::Dimensionless;
+    return m_components[a.index].shape().parameter_info(a.local).kind;
+  }
+
+  /// Whether parameter `i` belongs to the rigid placement of a component relative to its parent (sec. 3.5).
+  bool is_placement_parameter(std::size_t i) const { return address(i).is_placement; }
+
   /// Lower bound of parameter `i`.
   double parameter_lower_bound(std::size_t i) const { return bounds(i).first; }
   /// Upper bound of parameter `i`.
@@ -403,18 +419,54 @@ public:
 
   /// Whether `p` is a point of the surface (not discarded).
   bool is_on_surface(const Shape_point& p) const { return bool(canonical_point(p)); }
+
+  /// The other chart points that are the same point of the quotient as the
+  /// canonical point `p` (canonical_point()): its image `beta(p)` on the added
+  /// component of each blend whose base strip or disk holds it. (Across a
+  /// strip, a path on the surface leaves the base's chart at the strip's
+  /// discarded edge and goes on in the added component's chart: these are
+  /// the coordinates to go on in.)
+  std::vector<Shape_point> other_representatives(const Shape_point& p) const
+  {
+    std::vector<Shape_point> others;
+    for(const Blend& B : m_blends)
+    {
+      if(B.base_component() != p.component || B.base_region().chart() != p.u.chart)
+        continue;
+      const Ellipse_blending_region& R = B.base_region();
+      const Eigen::Vector2d v(p.u.x, p.u.y);
+      const Region_location loc = R.locate(v);
+      const bool tube = is_tube(B.added_component());
+      if(loc.side == Region_side::Strip)
+        others.push_back(Shape_point(B.added_component(),
+                                     B.added_side().strip_point(-loc.coordinates.d, loc.coordinates.theta, tube)));
+      else if(loc.side == Region_side::Discarded && B.is_gradual())
+        if(const std::optional<Core_coordinates> c = R.core_coordinates(v, -1., B.core_stretch()))
+          others.push_back(Shape_point(B.added_component(), B.added_side().core_point(c->t, c->theta, B.core_stretch())));
+    }
+    return others;
+  }
   /// @}
 
   /// \name Evaluation
   /// @{
 
-  /// `s(p)` at the canonical representative of `p`; points of discarded
-  /// parts of the domain give component_point(p) (so that the faces of the
-  /// per-component meshes that straddle a cut stay in place).
+  /// `s(p)` at the canonical representative of `p`. A point of a discarded
+  /// part of the domain gives the surface's continuation there: on the base
+  /// of a cut-and-glue blend within two strip widths past the strip's
+  /// discarded edge, the added component at `beta` extended (eq. 16 with
+  /// `d < -1`: `C_2(-d, theta)`), where `alpha` is 0; elsewhere
+  /// component_point(p). So a point held fixed while the regions move (a
+  /// fitter's correspondence) moves continuously, and the faces of the
+  /// per-component meshes that straddle a cut lie along the surface.
   Point_3 point(const Shape_point& p) const
   {
     const std::optional<Shape_point> c = canonical_point(p);
-    return c ? to_point(evaluate(*c, nullptr)) : component_point(p);
+    if(c)
+      return to_point(evaluate(*c, nullptr));
+    if(const std::optional<Eigen::Vector3d> x = continuation(p))
+      return to_point(*x);
+    return component_point(p);
   }
 
   /// `s(p)` and its sparse Jacobian (eq. 10, 11) at the canonical
@@ -445,17 +497,36 @@ public:
     return D;
   }
 
-  /// The unit normal at `p`, from central differences of point() in the
-  /// chart of the canonical representative (outward for outward-oriented charts).
+  /// `s(p)` and its chart Jacobian `D` (3 x 2: its derivatives with respect
+  /// to the two chart coordinates) at the canonical representative of `p`,
+  /// which is returned in `canonical` if given (`D` is with respect to its
+  /// chart coordinates): `alpha ds_1/du + (1 - alpha) ds_2/du_2 dbeta/du +
+  /// (s_1 - s_2) dalpha/du` in a strip or disk, analytic everywhere.
+  /// \throws std::invalid_argument if `p` is not on the surface.
+  Point_3 point_and_chart_jacobian(const Shape_point& p, Eigen::Matrix<double, 3, 2>& D,
+                                   Shape_point* canonical = nullptr) const
+  {
+    const std::optional<Shape_point> c = canonical_point(p);
+    if(!c)
+      throw std::invalid_argument("Blended_shape::point_and_chart_jacobian: the point is in a discarded part of the domain");
+    if(canonical)
+      *canonical = *c;
+    return to_point(evaluate(*c, nullptr, &D));
+  }
+
+  /// The unit normal at `p`, from the chart Jacobian at its canonical
+  /// representative (outward for outward-oriented charts); the component's
+  /// own normal at points not on the surface; 0 where the chart Jacobian
+  /// loses rank.
   Vector_3 normal(const Shape_point& p) const
   {
     const std::optional<Shape_point> c = canonical_point(p);
-    const Shape_point q = c ? *c : p;
-    const double h = 1e-6;
-    auto at = [&](double dx, double dy) {
-      return internal::to_eigen(point(Shape_point(q.component, Chart_point(q.u.chart, q.u.x + dx, q.u.y + dy))));
-    };
-    const Eigen::Vector3d n = (at(h, 0.) - at(-h, 0.)).cross(at(0., h) - at(0., -h));
+    Eigen::Matrix<double, 3, 2> D;
+    if(c)
+      evaluate(*c, nullptr, &D);
+    else
+      place(p.component, p.u, nullptr, 1., &D);
+    const Eigen::Vector3d n = D.col(0).cross(D.col(1));
     const double len = n.norm();
     if(!(len > 0.) || !std::isfinite(len))
       return Vector_3(0., 0., 0.);
@@ -630,7 +701,10 @@ public:
   ///         (holes switch both ends at once: switch_hole_to_tube()).
   void finish_gradual_blend(std::size_t b)
   {
-    const Blend& B = m_blends.at(b);
+    if(b >= m_blends.size())
+      throw std::out_of_range("Blended_shape::finish_gradual_blend: no blend " + std::to_string(b) + " (the shape has " +
+                              std::to_string(m_blends.size()) + ")");
+    const Blend& B = m_blends[b];
     if(B.hole() != Blend::no_hole)
       throw std::logic_error("Blended_shape::finish_gradual_blend: blend " + std::to_string(b) +
                              " is a hole end; use switch_hole_to_tube()");
@@ -645,7 +719,10 @@ public:
   /// \throws std::logic_error unless both ends have `h = 0`
   void switch_hole_to_tube(std::size_t h)
   {
-    const Hole_record& rec = m_holes.at(h);
+    if(h >= m_holes.size())
+      throw std::out_of_range("Blended_shape::switch_hole_to_tube: no hole " + std::to_string(h) + " (the shape has " +
+                              std::to_string(m_holes.size()) + ")");
+    const Hole_record& rec = m_holes[h];
     for(std::size_t e = 0; e < 2; ++e)
       if(m_blends[rec.blends[e]].base_region().parameters()[Ellipse_blending_region::H] != 0.)
         throw std::logic_error("Blended_shape::switch_hole_to_tube: hole " + std::to_string(h) +
@@ -993,6 +1070,32 @@ private:
     return false;
   }
 
+  // See point(): the added component at beta extended, for a discarded
+  // base point within two strip widths past the discarded edge of a
+  // cut-and-glue blend's strip.
+  std::optional<Eigen::Vector3d> continuation(const Shape_point& p) const
+  {
+    const Component_shape& s = m_components[p.component].shape();
+    for(const Blend& B : m_blends)
+    {
+      if(B.base_component() != p.component || B.is_gradual())
+        continue;
+      Chart_point v;
+      if(!s.to_chart(s.canonical_chart_point(p.u), B.base_region().chart(), v))
+        continue;
+      const std::optional<Strip_coordinates> c = B.base_region().extended_strip_coordinates(Eigen::Vector2d(v.x, v.y), 3.);
+      if(!c || !(c->d < -1.))
+        continue;
+      const bool tube = is_tube(B.added_component());
+      const Chart_point u2 = B.added_side().strip_point(-c->d, c->theta, tube);
+      const Component_shape& a = m_components[B.added_component()].shape();
+      if(u2.chart >= a.number_of_charts() || !a.chart_domain(u2.chart).contains(u2.x, u2.y))
+        continue;
+      return place(B.added_component(), u2, nullptr, 1., nullptr);
+    }
+    return std::nullopt;
+  }
+
   bool share_a_component(std::size_t b, std::size_t o) const
   {
     const Blend &B = m_blends[b], &O = m_blends[o];
@@ -1100,8 +1203,10 @@ private:
     return m_root_t[c] + m_root_R[c] * s;
   }
 
-  // s at a canonical point (eq. 3), with the sparse Jacobian (eq. 10, 11) if J.
-  Eigen::Vector3d evaluate(const Shape_point& p, Sparse_jacobian* J) const
+  // s at a canonical point (eq. 3), with the sparse Jacobian (eq. 10, 11) if
+  // J, and with D its chart Jacobian (3 x 2, with respect to p's chart coordinates):
+  //   ds/du = alpha ds1/du + (1 - alpha) ds2/du2 dbeta/du + (s1 - s2) dalpha/du.
+  Eigen::Vector3d evaluate(const Shape_point& p, Sparse_jacobian* J, Eigen::Matrix<double, 3, 2>* D = nullptr) const
   {
     for(std::size_t b = 0; b < m_blends.size(); ++b)
     {
@@ -1110,14 +1215,37 @@ private:
         continue;
       const Ellipse_blending_region& R = B.base_region();
       const Eigen::Vector2d v(p.u.x, p.u.y);
-      const Alpha_and_gradient<Ellipse_blending_region::Parameter_vector> A = R.alpha_and_gradient(v);
+      Alpha_and_gradient<Ellipse_blending_region::Parameter_vector> A = R.alpha_and_gradient(v);
       if(A.location.side == Region_side::Retained)
         continue;
-      // beta(u) and its derivative with respect to the region's parameters.
+      // beta(u), its derivatives with respect to the region's parameters and
+      // to u, and the derivative of alpha with respect to u.
       const bool tube = is_tube(B.added_component());
+      const double k = B.core_stretch();
       Eigen::Matrix2d Jb;
       Chart_point u2;
       Eigen::Matrix<double, 2, 7> du2 = Eigen::Matrix<double, 2, 7>::Zero();
+      Eigen::Matrix2d du2_du = Eigen::Matrix2d::Zero();
+      Eigen::RowVector2d dalpha_du = Eigen::RowVector2d::Zero();
+      std::optional<Core_coordinates> core;
+      if(A.location.side != Region_side::Strip)
+      {
+        // Canonical points are never on the discarded side of a cut-and-glue
+        // blend (canonical_point() locates them the same way, and the
+        // regions are kept valid): only disks of gradual blends get here.
+        CGAL_assertion(B.is_gradual());
+        core = R.core_coordinates(v, -1., k);
+        if(!core)
+        {
+          // On the boundary of the disk to rounding: the strip's inner edge.
+          const std::optional<Strip_coordinates> edge = R.strip_coordinates(v);
+          if(!edge)
+            break;
+          A = R.alpha_and_gradient(R.strip_point(edge->d, edge->theta));
+          A.location.side = Region_side::Strip;
+          A.location.coordinates = *edge;
+        }
+      }
       if(A.location.side == Region_side::Strip)
       {
         // The location found above carries the strip coordinates: no second Newton inversion.
@@ -1128,24 +1256,25 @@ private:
           const auto g = R.strip_coordinates_and_gradient(sc);
           du2 = -Jb.col(0) * g.d_gradient.transpose() + Jb.col(1) * g.theta_gradient.transpose();
         }
+        if(D)
+        {
+          const Eigen::Matrix2d G = R.strip_coordinate_derivatives(sc); // d(d, theta)/du
+          du2_du = -Jb.col(0) * G.row(0) + Jb.col(1) * G.row(1);
+          dalpha_du = R.region().blending_derivatives(A.location).d_d * G.row(0);
+        }
       }
       else
       {
-        // Canonical points are never on the discarded side of a cut-and-glue
-        // blend (canonical_point() locates them the same way): only disks of
-        // gradual blends get here.
-        CGAL_assertion(B.is_gradual());
-        const std::optional<Core_coordinates> k = R.core_coordinates(v, -1., B.core_stretch());
-        if(!k)
-          break; // on the boundary of the disk to rounding: alpha = h, beta at the strip's edge
-        u2 = B.added_side().core_point(k->t, k->theta, B.core_stretch(), &Jb);
+        u2 = B.added_side().core_point(core->t, core->theta, k, &Jb);
         if(J)
-          du2 = Jb * R.core_gradient(*k, -1., B.core_stretch());
+          du2 = Jb * R.core_gradient(*core, -1., k);
+        if(D) // alpha = h in the disk; beta through the disk coordinates (t, theta)
+          du2_du = core_beta_derivatives(B, v, *core, Jb);
       }
       const double alpha = A.alpha;
-      Eigen::Matrix<double, 3, 2> D2;
-      const Eigen::Vector3d x1 = place(p.component, p.u, J, alpha, nullptr);
-      const Eigen::Vector3d x2 = place(B.added_component(), u2, J, 1. - alpha, J ? &D2 : nullptr);
+      Eigen::Matrix<double, 3, 2> D1, D2;
+      const Eigen::Vector3d x1 = place(p.component, p.u, J, alpha, D ? &D1 : nullptr);
+      const Eigen::Vector3d x2 = place(B.added_component(), u2, J, 1. - alpha, (J || D) ? &D2 : nullptr);
       if(J)
       {
         Jacobian_block blk;
@@ -1153,9 +1282,36 @@ private:
         blk.columns = (x1 - x2) * A.gradient.transpose() + (1. - alpha) * D2 * du2;
         J->push_back(std::move(blk));
       }
+      if(D)
+        *D = alpha * D1 + (1. - alpha) * D2 * du2_du + (x1 - x2) * dalpha_du;
       return alpha * x1 + (1. - alpha) * x2;
     }
-    return place(p.component, p.u, J, 1., nullptr);
+    return place(p.component, p.u, J, 1., D);
+  }
+
+  // dbeta/du in the disk of gradual blend B at base point v with disk
+  // coordinates c (Jb: the added side's [d/dt, d/dtheta]): through the
+  // inverse of the base disk map's Jacobian, or, next to the centre where
+  // theta is not defined (beta is smooth there), by central differences of beta.
+  Eigen::Matrix2d core_beta_derivatives(const Blend& B, const Eigen::Vector2d& v, const Core_coordinates& c,
+                                        const Eigen::Matrix2d& Jb) const
+  {
+    const Ellipse_blending_region& R = B.base_region();
+    const double k = B.core_stretch();
+    Eigen::Matrix2d Jc;
+    R.core_point(c.t, c.theta, -1., k, &Jc);
+    if(std::abs(Jc.determinant()) > 1e-10 * Jc.squaredNorm())
+      return Jb * Jc.inverse();
+    auto beta = [&](const Eigen::Vector2d& w) {
+      const std::optional<Core_coordinates> q = R.core_coordinates(w, -1., k);
+      const Chart_point u2 = q ? B.added_side().core_point(q->t, q->theta, k) : B.added_side().core_point(0., 0., k);
+      return Eigen::Vector2d(u2.x, u2.y);
+    };
+    const double h = 1e-7 * (1. + v.norm());
+    Eigen::Matrix2d P;
+    P.col(0) = (beta(v + Eigen::Vector2d(h, 0.)) - beta(v - Eigen::Vector2d(h, 0.))) / (2. * h);
+    P.col(1) = (beta(v + Eigen::Vector2d(0., h)) - beta(v - Eigen::Vector2d(0., h))) / (2. * h);
+    return P;
   }
 
   std::vector<Component> m_components;

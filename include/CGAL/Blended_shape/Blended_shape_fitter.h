@@ -62,7 +62,7 @@ struct Fitting_settings
   double force_tolerance = 1e-6;          ///< largest scaled parameter force, see Step_report::scaled_force
   std::size_t steady_iterations = 2;      ///< consecutive steps under both tolerances
   int mesh_resolution = 10;               ///< chart tessellation (rings from pole to equator)
-  int projection_iterations = 10;         ///< at most this many Gauss-Newton steps from the mesh closest point to the surface's
+  int projection_iterations = 20;         ///< at most this many Gauss-Newton steps from a start to the closest point on the surface
   std::size_t subset_size = 4000;         ///< points used before the all-points phase (0: all from the start)
   unsigned int random_seed = 0;           ///< chooses the subset
   bool rigid_first = false;               ///< parameter scheduling: translation and rotation alone first
@@ -74,6 +74,15 @@ struct Fitting_settings
   /// orientation of the cloud): with one view of an object nothing else stops
   /// the model from growing where there is no data.
   double maximum_size_factor = 1.;
+  /// The loose spring of sec. 3.5 that holds the placement of each added
+  /// component of a blended model (relative to its parent) to where it was
+  /// when the fit started: its stiffness per parameter is this fraction of
+  /// the mean stiffness the data give that placement's translation or
+  /// quaternion at the first step. It keeps the join good where the data
+  /// leave a placement free (a hole turning about its axis, a part sliding
+  /// along its base) and biases the rest by about this fraction of the
+  /// distance moved. 0: no spring.
+  double placement_stiffness = 0.01;
   double maximum_running_time = HUGE_VAL; ///< seconds
 };
 
@@ -159,12 +168,8 @@ points until steady state: the relative energy decrease of a step is below
 `energy_tolerance` and the scaled force below `force_tolerance` for
 `steady_iterations` consecutive steps.
 
-\tparam Model a deformable model: Deformable_model (and, with the blending
-  features, blended models) with the types `Geom_traits` and `Jacobian` and
-  the functions `number_of_parameters()`, `parameters()`, `set_parameters()`,
-  `parameter_lower_bound()`, `parameter_upper_bound()`, `parameter_kind()`,
-  `is_pose_parameter()`, `number_of_charts()`, `chart_domain()`,
-  `canonical_chart_point()`, `point()`, `normal()`, `point_and_jacobian()`.
+\tparam Model a model of the concept `DeformableModel`: Deformable_model (one
+  primitive) or Deformable_blended_model (a blended shape of fixed structure).
 */
 template <class Model>
 class Blended_shape_fitter
@@ -188,10 +193,12 @@ public:
     check_points(points, point_map);
     if(settings.mesh_resolution < 2 || settings.maximum_iterations == 0 || settings.steady_iterations == 0 ||
        !(settings.energy_tolerance >= 0.) || !(settings.force_tolerance >= 0.) ||
-       !(settings.maximum_size_factor > 0.) ||
+       !(settings.maximum_size_factor > 0.) || !(settings.placement_stiffness >= 0.) ||
+       !std::isfinite(settings.placement_stiffness) || settings.projection_iterations < 1 ||
        !(settings.maximum_running_time > 0.))
       throw std::invalid_argument("Blended_shape_fitter: invalid settings (mesh_resolution >= 2, "
-                                  "maximum_iterations >= 1, steady_iterations >= 1, tolerances >= 0 and "
+                                  "maximum_iterations >= 1, steady_iterations >= 1, projection_iterations >= 1, "
+                                  "tolerances >= 0, maximum_size_factor > 0, a finite placement_stiffness >= 0 and "
                                   "maximum_running_time > 0 are required)");
     CGAL::Bbox_3 box;
     for(const auto& item : points)
@@ -211,9 +218,11 @@ public:
       m_charts.emplace_back(c, m_model.chart_domain(c), settings.mesh_resolution);
     position_meshes(m_model);
     m_locator = std::make_unique<Closest_point_locator<Geom_traits>>(m_charts);
-    m_tree_outdated = false;
+    m_locator->set_face_mask(&m_kept_faces);
+    m_tree_outdated = true;
     choose_subset();
     m_active_parameters.assign(m_model.number_of_parameters(), true);
+    m_rest = m_model.parameters();
   }
 
   /// The current model: that of the last accepted step.
@@ -235,6 +244,8 @@ public:
        model.number_of_charts() != m_model.number_of_charts())
       throw std::invalid_argument("Blended_shape_fitter::set_model: the model structure differs");
     m_model = model;
+    m_rest = m_model.parameters(); // the springs hold the placements to where they are now
+    m_spring.clear();
     refresh();
   }
 
@@ -271,7 +282,7 @@ public:
       set_correspondences(attach(m_model, active), m_use_all);
     const Correspondences& corr = m_correspondences;
     const double c = corr.scale;
-    report.energy_before = true_energy(corr.distance, c);
+    const Eigen::VectorXd q = m_model.parameters();
 
     // The linear system of the dynamics at these correspondences (eq. 7, 8):
     // per point the force direction in parameter space L^T n (point-to-plane).
@@ -280,6 +291,7 @@ public:
     Eigen::VectorXd g = Eigen::VectorXd::Zero(Eigen::Index(n));
     Eigen::VectorXd Jn(static_cast<Eigen::Index>(n));
     std::vector<double> w(active.size());
+    std::vector<Eigen::Index> nonzero;
     typename Model::Jacobian L;
     double E0 = 0.;
     for(std::size_t k = 0; k < active.size(); ++k)
@@ -288,15 +300,42 @@ public:
       const double r = corr.normal[k].dot(m_points[active[k]] - Eigen::Vector3d(x.x(), x.y(), x.z()));
       w[k] = weight(corr.distance[k], c);
       Jn.noalias() = L.transpose() * corr.normal[k];
-      H.template selfadjointView<Eigen::Lower>().rankUpdate(Jn, w[k]);
       g.noalias() += (w[k] * r) * Jn;
       E0 += 0.5 * w[k] * r * r;
+      // A point of a blended model depends on the few components and blends
+      // that reach it: the outer product only over its nonzero entries.
+      nonzero.clear();
+      for(Eigen::Index i = 0; i < Jn.size(); ++i)
+        if(Jn[i] != 0.)
+          nonzero.push_back(i);
+      if(2 * nonzero.size() > n)
+        H.template selfadjointView<Eigen::Lower>().rankUpdate(Jn, w[k]);
+      else
+        for(std::size_t a = 0; a < nonzero.size(); ++a)
+        {
+          const double wa = w[k] * Jn[nonzero[a]];
+          for(std::size_t b = 0; b <= a; ++b)
+            H(nonzero[a], nonzero[b]) += wa * Jn[nonzero[b]];
+        }
     }
     H.template triangularView<Eigen::Upper>() = H.transpose();
+    // The placement springs (sec. 3.5): E_s = (1/2) sum_i N k_i (q_i - rest_i)^2.
+    if(m_spring.empty())
+      set_springs(H, active.size());
+    const double points_used = double(active.size());
+    for(std::size_t i = 0; i < n; ++i)
+      if(m_spring[i] > 0.)
+      {
+        const Eigen::Index ii = Eigen::Index(i);
+        H(ii, ii) += points_used * m_spring[i];
+        g[ii] -= points_used * m_spring[i] * (q[ii] - m_rest[ii]);
+      }
+    const double spring0 = spring_energy(q, active.size());
+    E0 += spring0;
+    report.energy_before = true_energy(corr.distance, c) + spring0;
     // Parameters held at a bound by a force pushing past it are frozen for
     // this step (an active set): a step computed without the bound and then
     // clamped points the wrong way and only makes the damping grow.
-    const Eigen::VectorXd q = m_model.parameters();
     std::vector<bool> free_parameter = m_active_parameters;
     for(std::size_t i = 0; i < n; ++i)
     {
@@ -334,15 +373,29 @@ public:
       for(std::size_t i = 0; i < n; ++i)
         q1[Eigen::Index(i)] = (std::min)((std::max)(q1[Eigen::Index(i)], lower_bound(i)), upper_bound(i));
       Model trial = m_model;
-      trial.set_parameters(q1);
-      double E1 = 0.;
+      try
+      {
+        trial.set_parameters(q1);
+      }
+      catch(const std::invalid_argument&)
+      {
+        return false; // e.g. a blending region leaving its chart: a step too far
+      }
+      const double spring1 = spring_energy(q1, active.size());
+      double E1 = spring1;
       // the points (the same as point()) with their chart Jacobians: the
       // closest-point sweep starts from these chart points
+      // (where a blended model's regions moved, a chart point may have left
+      // the surface or have another canonical point: then only the point)
       m_start_points.resize(active.size());
       m_start_jacobians.resize(active.size());
+      m_start_valid.assign(active.size(), false);
       for(std::size_t k = 0; k < active.size(); ++k)
       {
-        const Point_3 x = trial.point_and_chart_jacobian(corr.u[k], m_start_jacobians[k]);
+        Chart_point cu;
+        const Chart_point& u = corr.u[k];
+        m_start_valid[k] = trial.canonical_surface_point(u, cu) && cu.chart == u.chart && cu.x == u.x && cu.y == u.y;
+        const Point_3 x = m_start_valid[k] ? trial.point_and_chart_jacobian(u, m_start_jacobians[k]) : trial.point(u);
         m_start_points[k] = Eigen::Vector3d(x.x(), x.y(), x.z());
         E1 += 0.5 * w[k] * CGAL::square(corr.normal[k].dot(m_points[active[k]] - m_start_points[k]));
       }
@@ -356,7 +409,7 @@ public:
       if(++sweeps > 2)
         return false;
       Correspondences moved = attach(trial, active, &corr, true);
-      const double F1 = true_energy(moved.distance, c);
+      const double F1 = true_energy(moved.distance, c) + spring1;
       if(!(F1 <= report.energy_before))
         return false;
       m_model = trial;
@@ -511,6 +564,13 @@ public:
     return corr.distance.empty() ? 0. : sum / double(corr.distance.size());
   }
 
+  /// The energy of the placement springs (see Fitting_settings::placement_stiffness)
+  /// of `model` for `points_used` points (0 before the first step, which sets the springs).
+  double placement_spring_energy(const Model& model, std::size_t points_used) const
+  {
+    return spring_energy(model.parameters(), points_used);
+  }
+
   /// The input points, as read (in their original order).
   const std::vector<Eigen::Vector3d>& points() const { return m_points; }
 
@@ -537,11 +597,45 @@ private:
 
   // Positions the chart meshes; their AABB tree is rebuilt when next searched
   // (a rejected trial's meshes are put back without a rebuild that nobody uses).
+  // The faces searched are those with a corner on the surface (sec. 3.3:
+  // the faces wholly in a discarded part of a blended shape's domain are
+  // omitted; for a single primitive, all).
   void position_meshes(const Model& model)
   {
-    for(Chart_mesh_type& cm : m_charts)
+    m_kept_faces.resize(m_charts.size());
+    for(std::size_t i = 0; i < m_charts.size(); ++i)
+    {
+      Chart_mesh_type& cm = m_charts[i];
       cm.set_positions([&](const Chart_point& u) { return model.point(u); });
+      const auto& mesh = cm.mesh();
+      std::vector<bool> on(mesh.number_of_vertices());
+      for(auto v : mesh.vertices())
+        on[std::size_t(v)] = model.is_on_surface(cm.chart_point(v));
+      m_kept_faces[i].assign(mesh.number_of_faces(), false);
+      for(auto f : mesh.faces())
+        for(auto v : cm.face_vertices(f))
+          if(on[std::size_t(v)])
+            m_kept_faces[i][std::size_t(f)] = true;
+    }
     m_tree_outdated = true;
+  }
+
+  // A start for the projection of a located mesh point: its chart point, or,
+  // on a face that straddles a cut, the face's corner on the surface with the
+  // largest barycentric weight.
+  Chart_point projection_start(const Located_point<Geom_traits>& loc, const Model& model) const
+  {
+    if(model.is_on_surface(loc.chart_point))
+      return loc.chart_point;
+    const Chart_mesh_type& cm = m_charts[loc.chart_mesh];
+    const auto v = cm.face_vertices(loc.face);
+    int best = -1;
+    for(int k = 0; k < 3; ++k)
+      if(model.is_on_surface(cm.chart_point(v[std::size_t(k)])) &&
+         (best < 0 || loc.barycentric[std::size_t(k)] > loc.barycentric[std::size_t(best)]))
+        best = k;
+    CGAL_assertion(best >= 0); // the kept faces have a corner on the surface
+    return cm.chart_point(v[std::size_t(best < 0 ? 0 : best)]);
   }
 
   // The locator over the current mesh positions.
@@ -646,11 +740,12 @@ private:
       const Eigen::Vector3d& p = m_points[active[k]];
       const Point_3 query(p[0], p[1], p[2]);
       internal::Foot_point foot;
-      if(previous != nullptr)
+      if(previous != nullptr && model.is_on_surface(previous->u[k]))
       {
-        foot = evaluated ? internal::refine_foot_point(model, p, previous->u[k], iterations, tolerance,
-                                                       &m_start_points[k], &m_start_jacobians[k])
-                         : internal::refine_foot_point(model, p, previous->u[k], iterations, tolerance);
+        foot = (evaluated && m_start_valid[k])
+                 ? internal::refine_foot_point(model, p, previous->u[k], iterations, tolerance, &m_start_points[k],
+                                               &m_start_jacobians[k])
+                 : internal::refine_foot_point(model, p, previous->u[k], iterations, tolerance);
         // A closer tessellation point within a mesh spacing of the foot point
         // (in the same chart) leads back to the same foot point: only one
         // farther away can lead to another one.
@@ -661,13 +756,15 @@ private:
             !(loc.chart_point.chart == foot.u.chart &&
               CGAL::square(loc.chart_point.x - foot.u.x) + CGAL::square(loc.chart_point.y - foot.u.y) <= spacing2)))
         {
-          const internal::Foot_point w = internal::refine_foot_point(model, p, loc.chart_point, iterations, tolerance);
+          const internal::Foot_point w =
+            internal::refine_foot_point(model, p, projection_start(loc, model), iterations, tolerance);
           if(!(foot.squared_distance < w.squared_distance)) // ties go to the tessellation's start
             foot = w;
         }
       }
-      else
-        foot = internal::refine_foot_point(model, p, locator().locate(query).chart_point, iterations, tolerance);
+      else // no previous foot point, or it left the surface of a blended model
+        foot = internal::refine_foot_point(model, p, projection_start(locator().locate(query), model), iterations,
+                                           tolerance);
       c.u[k] = foot.u;
       const Vector_3 nv = model.normal(foot.u);
       c.normal[k] = Eigen::Vector3d(nv.x(), nv.y(), nv.z());
@@ -680,6 +777,41 @@ private:
       c.scale = (std::max)(2.385 * 1.4826 * sorted[sorted.size() / 2], 1e-9 * m_diameter);
     }
     return c;
+  }
+
+  // The springs' stiffness per point and parameter: for each run of
+  // placement parameters of one kind (a translation, a quaternion), the
+  // settings' fraction of the mean of the data's stiffness H_ii over the run.
+  void set_springs(const Eigen::MatrixXd& H, std::size_t points_used)
+  {
+    const std::size_t n = m_model.number_of_parameters();
+    m_spring.assign(n, 0.);
+    if(!(m_settings.placement_stiffness > 0.) || points_used == 0)
+      return;
+    for(std::size_t i = 0; i < n;)
+    {
+      if(!m_model.is_placement_parameter(i))
+      {
+        ++i;
+        continue;
+      }
+      std::size_t j = i;
+      double sum = 0.;
+      while(j < n && m_model.is_placement_parameter(j) && m_model.parameter_kind(j) == m_model.parameter_kind(i))
+        sum += H(Eigen::Index(j), Eigen::Index(j)), ++j;
+      const double k = m_settings.placement_stiffness * sum / double(j - i) / double(points_used);
+      for(std::size_t l = i; l < j; ++l)
+        m_spring[l] = k;
+      i = j;
+    }
+  }
+
+  double spring_energy(const Eigen::VectorXd& q, std::size_t points_used) const
+  {
+    double e = 0.;
+    for(std::size_t i = 0; i < m_spring.size(); ++i)
+      e += 0.5 * double(points_used) * m_spring[i] * CGAL::square(q[Eigen::Index(i)] - m_rest[Eigen::Index(i)]);
+    return e;
   }
 
   // Cauchy weights and loss for scale c; c = infinity gives weight 1 and d^2.
@@ -702,10 +834,12 @@ private:
   double m_diagonal = 0.;  // of the bounding box: for the metrics
   double m_diameter = 0.;  // about the centroid: the rotation-invariant length scale
   std::vector<Chart_mesh_type> m_charts;
+  std::vector<std::vector<bool>> m_kept_faces; // per chart mesh and face: searched (see position_meshes())
   std::unique_ptr<Closest_point_locator<Geom_traits>> m_locator;
   bool m_tree_outdated = false; // the meshes moved since the locator's tree was built
   std::vector<Eigen::Vector3d> m_start_points;                     // see attach()
   std::vector<typename Model::Chart_jacobian> m_start_jacobians;  // see attach()
+  std::vector<bool> m_start_valid;                                 // see attach()
   std::vector<std::size_t> m_all, m_subset;
   bool m_use_all = true;
   std::vector<bool> m_active_parameters;
@@ -713,6 +847,8 @@ private:
   Correspondences m_scratch;             // those of mean_squared_distance() on the subset
   bool m_correspondences_valid = false;
   bool m_correspondences_all = false;
+  Eigen::VectorXd m_rest;             // the parameters the placement springs pull towards
+  std::vector<double> m_spring;       // per parameter: spring stiffness per point (set at the first step)
   double m_lambda = 1e-3;    // Gauss-Newton damping
   double m_dt_scale = 1.;    // explicit integrator: reduction of the stable step
 };

@@ -582,6 +582,25 @@ public:
     return near_miss;
   }
 
+  /// The strip coordinates of `u` over the strip extended to `|d| <= max_abs_d`
+  /// (eq. 24 with `d` beyond `[-1, 1]`: the offsets of `kappa` past the
+  /// strip's edges), the one of smallest `|d|` if several segments hold it, or nothing.
+  std::optional<Strip_coordinates> extended_strip_coordinates(const Vector_2& u, double max_abs_d) const
+  {
+    if(!u.allFinite())
+      throw std::invalid_argument("Blending_region: the chart point to locate is not finite");
+    std::optional<Strip_coordinates> best;
+    for(std::size_t i = 0; i < number_of_segments(); ++i)
+    {
+      double d, gamma;
+      if(!solve_in_segment(i, u, d, gamma) || !(std::abs(d) <= max_abs_d) || gamma < -1e-12 || gamma > 1. + 1e-12)
+        continue;
+      if(!best || std::abs(d) < std::abs(best->d))
+        best = make_coordinates(i, d, (std::max)(0., (std::min)(1., gamma)));
+    }
+    return best;
+  }
+
   /// \pre `p.chart == chart()`
   std::optional<Strip_coordinates> strip_coordinates(const Chart_point& p) const
   {
@@ -611,6 +630,15 @@ public:
   Matrix_2 coordinate_derivatives_u(std::size_t i, double d, double gamma) const
   {
     return strip_jacobian(i, d, gamma).inverse();
+  }
+
+  /// `∂(d, theta)/∂u` at the strip point `c` (rows: `d`, `theta`; eq. 24 and
+  /// 27 inverted): the chart derivatives of the blending function and of `beta`.
+  Matrix_2 strip_coordinate_derivatives(const Strip_coordinates& c) const
+  {
+    Matrix_2 M = coordinate_derivatives_u(c.segment, c.d, c.gamma);
+    M.row(1) *= theta_end(c.segment) - m_theta[c.segment];
+    return M;
   }
   /// @}
 
@@ -1544,6 +1572,16 @@ public:
 
   /// The strip coordinates of `u`, if it lies in the strip.
   std::optional<Strip_coordinates> strip_coordinates(const Vector_2& u) const { return m_region->strip_coordinates(u); }
+  /// See Blending_region::extended_strip_coordinates().
+  std::optional<Strip_coordinates> extended_strip_coordinates(const Vector_2& u, double max_abs_d) const
+  {
+    return m_region->extended_strip_coordinates(u, max_abs_d);
+  }
+  /// `∂(d, theta)/∂u` at the strip point `c` (Blending_region::strip_coordinate_derivatives()).
+  Eigen::Matrix2d strip_coordinate_derivatives(const Strip_coordinates& c) const
+  {
+    return m_region->strip_coordinate_derivatives(c);
+  }
   /// Which side of the region `u` is on, with its strip coordinates in the strip.
   Region_location locate(const Vector_2& u) const { return m_region->locate(u); }
   /// The blending function at chart point `u`.

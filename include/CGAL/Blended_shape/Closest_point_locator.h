@@ -13,6 +13,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <stdexcept>
 #include <vector>
 
 namespace CGAL {
@@ -60,7 +61,9 @@ barycentric coordinates, hence its domain point, at which the model is then
 evaluated analytically (the mesh is only the search structure).
 
 The chart meshes are held by reference: call rebuild() after their
-positions changed.
+positions changed. With a face mask (set_face_mask()), only the faces it
+keeps are searched: the per-component pieces of a blended shape (sec. 3.3)
+omit the faces wholly in a discarded part of the domain.
 */
 template <class GeomTraits>
 class Closest_point_locator
@@ -77,14 +80,31 @@ public:
   /// Builds the tree over the faces of all `charts`, which must outlive the locator.
   explicit Closest_point_locator(const std::vector<Chart_mesh_type>& charts) : m_charts(&charts) { rebuild(); }
 
-  /// Rebuilds the tree (after the chart mesh positions moved). The search
-  /// tree of vertices that gives locate() its starting hint is built on the
-  /// first locate() after a rebuild (queries with a bound need none).
+  /// Searches only the faces `mask[i][f]` of chart mesh `i` says to keep
+  /// (indexed by face index), or every face if `mask` is null; `mask` must
+  /// outlive the locator. Takes effect at the next rebuild().
+  void set_face_mask(const std::vector<std::vector<bool>>* mask) { m_mask = mask; }
+
+  /// Rebuilds the tree (after the chart mesh positions, or the face mask, changed).
   void rebuild()
   {
     m_tree.clear();
-    for(const Chart_mesh_type& cm : *m_charts)
-      m_tree.insert(faces(cm.mesh()).first, faces(cm.mesh()).second, cm.mesh());
+    for(std::size_t i = 0; i < m_charts->size(); ++i)
+    {
+      const Chart_mesh_type& cm = (*m_charts)[i];
+      if(m_mask == nullptr)
+      {
+        m_tree.insert(faces(cm.mesh()).first, faces(cm.mesh()).second, cm.mesh());
+        continue;
+      }
+      std::vector<typename Chart_mesh_type::face_descriptor> kept;
+      for(auto f : faces(cm.mesh()))
+        if(is_kept(i, f))
+          kept.push_back(f);
+      m_tree.insert(kept.begin(), kept.end(), cm.mesh());
+    }
+    if(m_tree.empty())
+      throw std::invalid_argument("Closest_point_locator: no face to search (the face mask keeps none)");
     m_tree.build();
     m_any_primitive = m_tree.any_reference_point_and_id().second;
   }
@@ -116,9 +136,12 @@ public:
   {
     double best = HUGE_VAL;
     Located_point<GeomTraits> result;
-    for(const Chart_mesh_type& cm : *m_charts)
-      for(auto f : faces(cm.mesh()))
+    for(std::size_t i = 0; i < m_charts->size(); ++i)
+      for(auto f : faces((*m_charts)[i].mesh()))
       {
+        const Chart_mesh_type& cm = (*m_charts)[i];
+        if(!is_kept(i, f))
+          continue;
         const auto v = cm.face_vertices(f);
         const typename GeomTraits::Triangle_3 t(cm.mesh().point(v[0]), cm.mesh().point(v[1]), cm.mesh().point(v[2]));
         const Point_3 c = GeomTraits().construct_projected_point_3_object()(t, query);
@@ -153,7 +176,13 @@ private:
     return loc;
   }
 
+  bool is_kept(std::size_t i, typename Chart_mesh_type::face_descriptor f) const
+  {
+    return m_mask == nullptr || (*m_mask)[i][std::size_t(f)];
+  }
+
   const std::vector<Chart_mesh_type>* m_charts;
+  const std::vector<std::vector<bool>>* m_mask = nullptr;
   Tree m_tree;
   typename Primitive::Id m_any_primitive; // the id handed to bounded queries with their bound
 };
@@ -192,7 +221,9 @@ Foot_point refine_foot_point(const Model& model, const Eigen::Vector3d& p, Chart
   // From the chart in which the start is canonical: a start on the rim of
   // its chart (a tessellation point near a chart seam) would otherwise be
   // stuck there by steps that leave the chart.
-  Chart_point u = model.canonical_chart_point(start);
+  Chart_point u;
+  if(!model.canonical_surface_point(start, u))
+    throw std::invalid_argument("refine_closest_point: the start is not a point of the model's surface");
   const bool moved = u.chart != start.chart || u.x != start.x || u.y != start.y;
   Chart_jacobian J, Jv;
   Eigen::Vector3d x;
@@ -204,14 +235,19 @@ Foot_point refine_foot_point(const Model& model, const Eigen::Vector3d& p, Chart
   else
     x = eval(u, J);
   double d2 = (p - x).squaredNorm();
-  for(int it = 0; it < max_iterations && d2 > 0.; ++it)
-  {
-    const double j00 = J.col(0).squaredNorm(), j11 = J.col(1).squaredNorm(), j01 = J.col(0).dot(J.col(1));
+  // One safeguarded Gauss-Newton step in the coordinates of chart point
+  // `from` (the current point, or another representative of it) with the
+  // chart Jacobian `Jf` there: true if it brought the point closer (then u,
+  // x, d2, J are the new point's). `converged`: no step is worth taking;
+  // `left_surface`: a trial left the chart or the surface.
+  auto step_from = [&](const Chart_point& from, const Chart_jacobian& Jf, bool& converged, bool& left_surface) {
+    converged = left_surface = false;
+    const double j00 = Jf.col(0).squaredNorm(), j11 = Jf.col(1).squaredNorm(), j01 = Jf.col(0).dot(Jf.col(1));
     const double t = j00 + j11;
     if(!(t > 0.) || !std::isfinite(t))
-      break;
+      return false;
     const Eigen::Vector3d r = p - x;
-    const double g0 = J.col(0).dot(r), g1 = J.col(1).dot(r);
+    const double g0 = Jf.col(0).dot(r), g1 = Jf.col(1).dot(r);
     // Levenberg-regularized: where exponents above 1 flatten the map (its chart
     // Jacobian loses rank on the poles and axes) the step still moves along
     // the direction that is left. When one column is much shorter than the
@@ -219,15 +255,14 @@ Foot_point refine_foot_point(const Model& model, const Eigen::Vector3d& p, Chart
     // strong damping of that direction: its Gauss-Newton step is then far too
     // long, and would otherwise take the good step along the other one with it.
     const bool ill_conditioned = (std::min)(j00, j11) < 1e-3 * t;
-    bool improved = false, converged = false;
-    for(int level = 0; level < (ill_conditioned ? 2 : 1) && !improved; ++level)
+    for(int level = 0; level < (ill_conditioned ? 2 : 1); ++level)
     {
       // the 2 x 2 system (J^T J + mu tr I) step = J^T r, solved in closed form
       // (positive definite: the damping keeps the determinant away from zero)
       const double mu = (level == 0 ? 1e-10 : 1e-3) * t;
       const double a = j00 + mu, c = j11 + mu, det = a * c - j01 * j01;
       if(!(det > 0.))
-        break;
+        return false;
       Eigen::Vector2d step((c * g0 - j01 * g1) / det, (a * g1 - j01 * g0) / det);
       const double length2 = step.squaredNorm();
       // At the foot point to the accuracy that matters: a tangential error
@@ -235,7 +270,7 @@ Foot_point refine_foot_point(const Model& model, const Eigen::Vector3d& p, Chart
       if(!(length2 > 1e-18) || (level == 0 && step.dot(Eigen::Vector2d(g0, g1)) <= relative_tolerance * d2))
       {
         converged = true;
-        break;
+        return false;
       }
       // A step this short that fails at full length fails on rounding alone
       // (the squared distance is only known to ~1e-13 relatively): halving it
@@ -245,27 +280,71 @@ Foot_point refine_foot_point(const Model& model, const Eigen::Vector3d& p, Chart
       // Gauss-Newton step overshoots by orders of magnitude: keep halving
       // down to that length.
       const int halvings = (length2 < 1e-14) ? 1 : 40;
-      for(int half = 0; half < halvings && !improved && (half < 4 || step.squaredNorm() >= 1e-14); ++half, step *= 0.5)
+      for(int half = 0; half < halvings && (half < 4 || step.squaredNorm() >= 1e-14); ++half, step *= 0.5)
       {
-        Chart_point v(u.chart, u.x + step[0], u.y + step[1]);
-        const Chart_domain dom = model.chart_domain(v.chart);
-        if(!dom.contains(v.x, v.y))
+        Chart_point v;
+        if(!model.canonical_surface_point(Chart_point(from.chart, from.x + step[0], from.y + step[1]), v))
+        {
+          left_surface = true; // off the chart or into a discarded part of the domain
           continue;
-        v = model.canonical_chart_point(v);
+        }
         const Eigen::Vector3d xv = eval(v, Jv); // the Jacobian of the next step, if this one is kept
         const double dv = (p - xv).squaredNorm();
         if(dv < d2)
         {
-          u = v; x = xv; d2 = dv; J = Jv; improved = true;
+          u = v; x = xv; d2 = dv; J = Jv;
+          return true;
         }
       }
-      if(!improved && length2 < 1e-14)
+      if(length2 < 1e-14)
       {
         converged = true;
-        break;
+        return false;
       }
     }
-    if(!improved || converged)
+    return false;
+  };
+  for(int it = 0; it < max_iterations && d2 > 0.; ++it)
+  {
+    const Chart_point u0 = u;
+    const Eigen::Vector3d x0 = x;
+    const double d0 = d2;
+    const Chart_jacobian J0 = J;
+    bool converged, left_surface;
+    bool improved = step_from(u, J, converged, left_surface);
+    // A step toward the discarded edge of a blend's strip (or disk): the
+    // surface goes on in the added component's chart, so a step is also
+    // taken from the same point expressed there, with a chart Jacobian by
+    // central differences (rare), and the closer result is kept.
+    if(!converged && left_surface)
+    {
+      const std::vector<Chart_point> others = model.alternative_chart_points(u0);
+      const Chart_point u1 = u;
+      const Eigen::Vector3d x1 = x;
+      const double d1 = d2;
+      const Chart_jacobian J1 = J;
+      for(const Chart_point& w : others)
+      {
+        u = u0; x = x0; d2 = d0; J = J0;
+        const double h = 1e-7;
+        Chart_jacobian Jw;
+        for(int k = 0; k < 2; ++k)
+        {
+          const Chart_point a(w.chart, w.x + (k == 0 ? h : 0.), w.y + (k == 1 ? h : 0.));
+          const Chart_point b(w.chart, w.x - (k == 0 ? h : 0.), w.y - (k == 1 ? h : 0.));
+          const auto xa = model.point(a), xb = model.point(b);
+          Jw.col(k) = Eigen::Vector3d(xa.x() - xb.x(), xa.y() - xb.y(), xa.z() - xb.z()) / (2. * h);
+        }
+        bool c2, l2;
+        if(step_from(w, Jw, c2, l2) && d2 < d1)
+        {
+          improved = true;
+          break;
+        }
+        u = u1; x = x1; d2 = d1; J = J1;
+      }
+    }
+    if(!improved)
       break;
   }
   return Foot_point{u, x, d2};
@@ -293,8 +372,11 @@ on it maps back to a chart point a little off the true foot point (by the
 chord error of the chart triangle), and two charts that share a mesh edge map
 it to different such chart points. Refinement removes this.
 
-`Model` provides `point_and_chart_jacobian()`, `chart_domain()` and
-`canonical_chart_point()` (as Deformable_model does).
+`Model` provides `point_and_chart_jacobian()` and `canonical_surface_point()`
+(as Deformable_model and Deformable_blended_model do); steps that leave the
+surface (a chart's domain, or into a discarded part of a blended shape's
+domain) are treated as failed.
+\throws std::invalid_argument if `start` is not on the surface.
 */
 template <class Model>
 Chart_point refine_closest_point(const Model& model, const Eigen::Vector3d& p, Chart_point start, int max_iterations)

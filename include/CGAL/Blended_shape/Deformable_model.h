@@ -13,6 +13,7 @@
 #include <sstream>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 namespace CGAL {
 namespace Blended_shapes {
@@ -106,6 +107,8 @@ public:
   }
   /// Whether parameter `i` belongs to the rigid placement (translation, rotation).
   bool is_pose_parameter(std::size_t i) const { return i < number_of_pose_parameters; }
+  /// Whether parameter `i` places a component relative to another: never (one primitive).
+  bool is_placement_parameter(std::size_t) const { return false; }
 
   /// The parameter vector `q` (the quaternion is stored normalized).
   Eigen::VectorXd parameters() const
@@ -143,6 +146,23 @@ public:
   Chart_domain chart_domain(std::size_t c) const { return m_shape.chart_domain(c); }
   /// The shape's canonical chart point of `u`.
   Chart_point canonical_chart_point(const Chart_point& u) const { return m_shape.canonical_chart_point(u); }
+  /// Whether `u` is in its chart's domain (every such point is on the surface of a primitive).
+  bool is_on_surface(const Chart_point& u) const
+  {
+    return u.chart < number_of_charts() && chart_domain(u.chart).contains(u.x, u.y);
+  }
+  /// The other chart points of the same surface point: none needed (the
+  /// charts overlap, so a projection never meets a chart's edge while on
+  /// the surface; see Deformable_blended_model::alternative_chart_points()).
+  std::vector<Chart_point> alternative_chart_points(const Chart_point&) const { return {}; }
+  /// The canonical chart point of `u` in `canonical`, if `u` is in its chart's domain; otherwise false.
+  bool canonical_surface_point(const Chart_point& u, Chart_point& canonical) const
+  {
+    if(!is_on_surface(u))
+      return false;
+    canonical = canonical_chart_point(u);
+    return true;
+  }
   /// @}
 
   /// \name Evaluation

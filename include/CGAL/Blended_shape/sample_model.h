@@ -24,13 +24,14 @@ struct Surface_sample
 /*!
 \ingroup PkgBlendedShapeMetrics
 
-`count` points spread over the surface of `model` (anything with
-`number_of_charts()`, `chart_domain()`, `canonical_chart_point()`, `point()` and `normal()`), for tests
-and benchmarks: triangles of the chart meshes are drawn with probability
-proportional to their area in space, a uniform point of the triangle is
-mapped back to its chart point, and the model is evaluated there. Where
-charts overlap, each sample is kept only if its chart point is the
-canonical one, so overlaps are not sampled twice. Deterministic for `seed`.
+`count` points spread over the surface of `model` (a `DeformableModel`:
+Deformable_model or Deformable_blended_model), for tests and benchmarks:
+triangles of the chart meshes are drawn with probability proportional to
+their area in space, a uniform point of the triangle is mapped back to its
+chart point, and the model is evaluated there. Where charts overlap (or
+blends glue strips), each sample is kept only if its chart point is the
+canonical one, so overlaps are not sampled twice; samples in a discarded
+part of the domain are dropped. Deterministic for `seed`.
 
 If `eye` is given, only samples whose normal faces it are kept (a
 single-view scan of a convex shape); then fewer than `count` may come out.
@@ -75,9 +76,11 @@ sample_model_surface(const Model& model, std::size_t count, unsigned int seed, i
     double a = unit(rng), b = unit(rng);
     if(a + b > 1.) { a = 1. - a; b = 1. - b; }
     const Chart_point u = charts[fr.chart].chart_point(fr.face, {{1. - a - b, a, b}});
-    const Chart_point cu = model.canonical_chart_point(u);
+    Chart_point cu;
+    if(!model.canonical_surface_point(u, cu))
+      continue; // in a discarded part of a blended shape's domain
     if(cu.chart != u.chart)
-      continue; // the other chart's copy of this band is the one that counts
+      continue; // the other chart's copy of this band (or strip) is the one that counts
     Surface_sample<GT> s{model.point(u), model.normal(u), u};
     if(eye != nullptr && s.normal * (*eye - s.point) <= 0.)
       continue;
