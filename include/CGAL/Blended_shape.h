@@ -22,6 +22,7 @@
 #include <CGAL/Blended_shape/read_triangle_mesh.h>
 #include <CGAL/Blended_shape/initialize_from_moments.h>
 #include <CGAL/Blended_shape/Deformable_model.h>
+#include <CGAL/Blended_shape/Deformable_blended_model.h>
 #include <CGAL/Blended_shape/Closest_point_locator.h>
 #include <CGAL/Blended_shape/Blended_shape_fitter.h>
 #include <CGAL/Blended_shape/Fit_metrics.h>
