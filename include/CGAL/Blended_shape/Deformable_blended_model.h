@@ -5,11 +5,10 @@
 #include <CGAL/Blended_shape/Blended_shape.h>
 #include <CGAL/Blended_shape/Chart_domain.h>
 #include <CGAL/Blended_shape/internal/Parameter_table.h>
-#include <CGAL/Blended_shape/internal/quaternion.h>
+#include <CGAL/Blended_shape/internal/Rigid_pose.h>
 
 #include <Eigen/Core>
 
-#include <array>
 #include <cmath>
 #include <stdexcept>
 #include <string>
@@ -52,7 +51,7 @@ public:
   /// The chart Jacobian of the model point: its derivatives with respect to the two chart coordinates.
   typedef Eigen::Matrix<double, 3, 2> Chart_jacobian;
   /// The translation (3) and the quaternion (4), first in the parameter vector.
-  static constexpr int number_of_pose_parameters = 7;
+  static constexpr int number_of_pose_parameters = internal::Rigid_pose::number_of_parameters;
 
   /// The shape `s` placed at `translation`, rotated by `quaternion` (w, x, y, z).
   /// \throws std::invalid_argument if the quaternion is zero or not finite or the translation not finite.
@@ -61,18 +60,18 @@ public:
                                     const Eigen::Vector4d& quaternion = Eigen::Vector4d(1., 0., 0., 0.))
     : m_shape(shape)
   {
-    set_pose(translation, quaternion);
+    m_pose.set(translation, quaternion, "Deformable_blended_model");
     index_charts();
   }
 
   /// The blended shape, in its own frame.
   const Shape_type& shape() const { return m_shape; }
   /// The translation `c`.
-  const Eigen::Vector3d& translation() const { return m_c; }
+  const Eigen::Vector3d& translation() const { return m_pose.c; }
   /// The rotation as a unit quaternion (w, x, y, z).
-  const Eigen::Vector4d& quaternion() const { return m_quaternion; }
+  const Eigen::Vector4d& quaternion() const { return m_pose.quaternion; }
   /// The rotation matrix `R`.
-  const Eigen::Matrix3d& rotation() const { return m_R; }
+  const Eigen::Matrix3d& rotation() const { return m_pose.R; }
 
   /// \name Parameters
   /// @{
@@ -82,8 +81,8 @@ public:
   /// "cx", "cy", "cz", "qw", "qx", "qy", "qz", then the shape's names ("c0.a1", "b0.h", ...).
   std::string parameter_name(std::size_t i) const
   {
-    static const char* pose[] = {"cx", "cy", "cz", "qw", "qx", "qy", "qz"};
-    return i < number_of_pose_parameters ? pose[i] : m_shape.parameter_name(i - number_of_pose_parameters);
+    return i < number_of_pose_parameters ? std::string(internal::Rigid_pose::parameter_name(i))
+                                         : m_shape.parameter_name(i - number_of_pose_parameters);
   }
   /// The smallest allowed value of parameter `i` (`-HUGE_VAL` for the pose).
   double parameter_lower_bound(std::size_t i) const
@@ -98,10 +97,8 @@ public:
   /// The kind of parameter `i`; the translation counts as a length, the quaternion as dimensionless.
   Parameter_kind parameter_kind(std::size_t i) const
   {
-    if(i < 3)
-      return Parameter_kind::Length;
     if(i < number_of_pose_parameters)
-      return Parameter_kind::Dimensionless;
+      return internal::Rigid_pose::parameter_kind(i);
     return m_shape.parameter_kind(i - number_of_pose_parameters);
   }
   /// Whether parameter `i` belongs to the rigid placement `(c, R)` of the whole model.
@@ -122,7 +119,7 @@ public:
   Eigen::VectorXd parameters() const
   {
     Eigen::VectorXd q(static_cast<Eigen::Index>(number_of_parameters()));
-    q << m_c, m_quaternion, m_shape.parameters();
+    q << m_pose.c, m_pose.quaternion, m_shape.parameters();
     return q;
   }
 
@@ -135,11 +132,10 @@ public:
     if(q.size() != Eigen::Index(number_of_parameters()))
       throw std::invalid_argument("Deformable_blended_model: parameter vector of size " + std::to_string(q.size()) +
                                   ", expected " + std::to_string(number_of_parameters()));
-    Shape_type shape = m_shape;
-    shape.set_parameters(q.tail(q.size() - number_of_pose_parameters));
-    const Eigen::Vector3d c = q.template head<3>();
-    set_pose(c, q.template segment<4>(3));
-    m_shape = std::move(shape);
+    internal::Rigid_pose pose = m_pose;
+    pose.set(q.template head<3>(), q.template segment<4>(3), "Deformable_blended_model");
+    m_shape.set_parameters(q.tail(q.size() - number_of_pose_parameters)); // unchanged if it throws
+    m_pose = pose;
   }
   /// @}
 
@@ -209,7 +205,8 @@ public:
   Vector_3 normal(const Chart_point& u) const
   {
     const Vector_3 n = m_shape.normal(shape_point(u));
-    const Eigen::Vector3d r = m_R * Eigen::Vector3d(CGAL::to_double(n.x()), CGAL::to_double(n.y()), CGAL::to_double(n.z()));
+    const Eigen::Vector3d r =
+      m_pose.R * Eigen::Vector3d(CGAL::to_double(n.x()), CGAL::to_double(n.y()), CGAL::to_double(n.z()));
     return Vector_3(r[0], r[1], r[2]);
   }
 
@@ -223,14 +220,12 @@ public:
     for(Jacobian_block& b : L)
     {
       b.first_column += number_of_pose_parameters;
-      b.columns = m_R * b.columns;
+      b.columns = m_pose.R * b.columns;
     }
     Jacobian_block pose;
     pose.first_column = 0;
     pose.columns.resize(3, number_of_pose_parameters);
-    pose.columns.template leftCols<3>().setIdentity();
-    for(int k = 0; k < 4; ++k)
-      pose.columns.col(3 + k) = m_dR[std::size_t(k)] * s;
+    m_pose.jacobian(s, pose.columns);
     L.insert(L.begin(), std::move(pose));
     return place(s);
   }
@@ -256,7 +251,7 @@ public:
   {
     Chart_jacobian Ds;
     const Point_3 s = m_shape.point_and_chart_jacobian(shape_point(u), Ds);
-    D.noalias() = m_R * Ds;
+    D.noalias() = m_pose.R * Ds;
     return place(to_eigen(s));
   }
   /// @}
@@ -268,18 +263,8 @@ private:
   }
   Point_3 place(const Eigen::Vector3d& s) const
   {
-    const Eigen::Vector3d x = m_c + m_R * s;
+    const Eigen::Vector3d x = m_pose.place(s);
     return Point_3(x[0], x[1], x[2]);
-  }
-  void set_pose(const Eigen::Vector3d& c, const Eigen::Vector4d& quaternion)
-  {
-    const double n = quaternion.norm();
-    if(!c.allFinite() || !(n > 0.) || !std::isfinite(n))
-      throw std::invalid_argument("Deformable_blended_model: the translation must be finite and the quaternion non-zero");
-    m_c = c;
-    m_quaternion = quaternion / n;
-    m_R = internal::rotation_matrix(m_quaternion);
-    m_dR = internal::rotation_matrix_derivatives(m_quaternion);
   }
   void index_charts()
   {
@@ -294,10 +279,7 @@ private:
   }
 
   Shape_type m_shape;
-  Eigen::Vector3d m_c;
-  Eigen::Vector4d m_quaternion;
-  Eigen::Matrix3d m_R;
-  std::array<Eigen::Matrix3d, 4> m_dR;
+  internal::Rigid_pose m_pose;
   std::vector<std::size_t> m_first_chart;     // per component: its first model chart
   std::vector<std::size_t> m_chart_component; // per model chart: its component
 };

@@ -4,11 +4,10 @@
 
 #include <CGAL/Blended_shape/Chart_domain.h>
 #include <CGAL/Blended_shape/internal/Parameter_table.h>
-#include <CGAL/Blended_shape/internal/quaternion.h>
+#include <CGAL/Blended_shape/internal/Rigid_pose.h>
 
 #include <Eigen/Core>
 
-#include <array>
 #include <cmath>
 #include <sstream>
 #include <stdexcept>
@@ -49,14 +48,12 @@ public:
   typedef Eigen::Matrix<double, 3, 2> Chart_jacobian;
 
   /// The translation (3) and the quaternion (4), first in the parameter vector.
-  static constexpr int number_of_pose_parameters = 7;
+  static constexpr int number_of_pose_parameters = internal::Rigid_pose::number_of_parameters;
   /// The shape's parameters, after the pose.
   static constexpr int number_of_shape_parameters = Shape::number_of_parameters;
 
   /// The shape at the origin, unrotated.
-  explicit Deformable_model(const Shape& shape = Shape())
-    : m_shape(shape), m_c(Eigen::Vector3d::Zero()), m_quaternion(1., 0., 0., 0.)
-  { update_rotation(); }
+  explicit Deformable_model(const Shape& shape = Shape()) : m_shape(shape) {}
 
   /// \throws std::invalid_argument if `quaternion` is zero or not finite.
   Deformable_model(const Shape& shape, const Eigen::Vector3d& translation, const Eigen::Vector4d& quaternion)
@@ -70,11 +67,11 @@ public:
   /// The shape, in its own frame.
   const Shape& shape() const { return m_shape; }
   /// The translation `c`.
-  const Eigen::Vector3d& translation() const { return m_c; }
+  const Eigen::Vector3d& translation() const { return m_pose.c; }
   /// The rotation as a unit quaternion (w, x, y, z).
-  const Eigen::Vector4d& quaternion() const { return m_quaternion; }
+  const Eigen::Vector4d& quaternion() const { return m_pose.quaternion; }
   /// The rotation matrix `R`.
-  const Eigen::Matrix3d& rotation() const { return m_R; }
+  const Eigen::Matrix3d& rotation() const { return m_pose.R; }
 
   /// \name Parameters
   /// @{
@@ -85,8 +82,8 @@ public:
   /// The name of parameter `i`: "cx", "cy", "cz", "qw", "qx", "qy", "qz", then the shape's names.
   std::string parameter_name(std::size_t i) const
   {
-    static const char* pose[] = {"cx", "cy", "cz", "qw", "qx", "qy", "qz"};
-    return i < number_of_pose_parameters ? pose[i] : Shape::parameter_name(int(i) - number_of_pose_parameters);
+    return i < number_of_pose_parameters ? internal::Rigid_pose::parameter_name(i)
+                                         : Shape::parameter_name(int(i) - number_of_pose_parameters);
   }
   /// The smallest allowed value of parameter `i` (`-HUGE_VAL` for the pose).
   double parameter_lower_bound(std::size_t i) const
@@ -101,8 +98,7 @@ public:
   /// The kind of parameter `i`; the translation counts as a length, the quaternion as dimensionless.
   Parameter_kind parameter_kind(std::size_t i) const
   {
-    if(i < 3) return Parameter_kind::Length;
-    if(i < number_of_pose_parameters) return Parameter_kind::Dimensionless;
+    if(i < number_of_pose_parameters) return internal::Rigid_pose::parameter_kind(i);
     return Shape::parameter_info(int(i) - number_of_pose_parameters).kind;
   }
   /// Whether parameter `i` belongs to the rigid placement (translation, rotation).
@@ -114,7 +110,7 @@ public:
   Eigen::VectorXd parameters() const
   {
     Eigen::VectorXd q(number_of_parameters());
-    q << m_c, m_quaternion, m_shape.parameters();
+    q << m_pose.c, m_pose.quaternion, m_shape.parameters();
     return q;
   }
 
@@ -125,14 +121,10 @@ public:
     if(q.size() != Eigen::Index(number_of_parameters()))
       throw std::invalid_argument("Deformable_model: parameter vector of size " + std::to_string(q.size()) +
                                   ", expected " + std::to_string(number_of_parameters()));
-    const Eigen::Vector4d quat = q.template segment<4>(3);
-    const double n = quat.norm();
-    if(!q.template head<3>().allFinite() || !(n > 0.) || !std::isfinite(n))
-      throw std::invalid_argument("Deformable_model: the translation must be finite and the quaternion non-zero");
+    internal::Rigid_pose pose = m_pose;
+    pose.set(q.template head<3>(), q.template segment<4>(3), "Deformable_model");
     m_shape.set_parameters(q.template tail<number_of_shape_parameters>());
-    m_c = q.template head<3>();
-    m_quaternion = quat / n;
-    update_rotation();
+    m_pose = pose;
   }
 
   /// @}
@@ -175,7 +167,7 @@ public:
   Vector_3 normal(const Chart_point& u) const
   {
     const Vector_3 n = m_shape.normal(u);
-    const Eigen::Vector3d r = m_R * Eigen::Vector3d(n.x(), n.y(), n.z());
+    const Eigen::Vector3d r = m_pose.R * Eigen::Vector3d(n.x(), n.y(), n.z());
     return Vector_3(r[0], r[1], r[2]);
   }
 
@@ -186,10 +178,8 @@ public:
     const Point_3 s = m_shape.point_and_jacobian(u, Js);
     const Eigen::Vector3d sv(s.x(), s.y(), s.z());
     L.resize(3, Eigen::Index(number_of_parameters()));
-    L.template leftCols<3>().setIdentity();
-    for(int k = 0; k < 4; ++k)
-      L.col(3 + k) = m_dR[std::size_t(k)] * sv;
-    L.template rightCols<number_of_shape_parameters>().noalias() = m_R * Js;
+    m_pose.jacobian(sv, L.template leftCols<number_of_pose_parameters>());
+    L.template rightCols<number_of_shape_parameters>().noalias() = m_pose.R * Js;
     return place(s);
   }
 
@@ -199,7 +189,7 @@ public:
   {
     typename Shape::Chart_jacobian Ds;
     const Point_3 s = m_shape.point_and_chart_jacobian(u, Ds);
-    D.noalias() = m_R * Ds;
+    D.noalias() = m_pose.R * Ds;
     return place(s);
   }
   /// @}
@@ -207,22 +197,13 @@ public:
   /// c + R s: a point of the shape's frame placed in space.
   Point_3 place(const Point_3& s) const
   {
-    const Eigen::Vector3d x = m_c + m_R * Eigen::Vector3d(s.x(), s.y(), s.z());
+    const Eigen::Vector3d x = m_pose.place(Eigen::Vector3d(s.x(), s.y(), s.z()));
     return Point_3(x[0], x[1], x[2]);
   }
 
 private:
-  void update_rotation()
-  {
-    m_R = internal::rotation_matrix(m_quaternion);
-    m_dR = internal::rotation_matrix_derivatives(m_quaternion);
-  }
-
   Shape m_shape;
-  Eigen::Vector3d m_c;
-  Eigen::Vector4d m_quaternion;
-  Eigen::Matrix3d m_R;
-  std::array<Eigen::Matrix3d, 4> m_dR;
+  internal::Rigid_pose m_pose;
 };
 
 } // namespace Blended_shapes
