@@ -479,6 +479,11 @@ public:
       phase = p;
       move_pose_only(p == Fitting_phase::Rigid);
       use_all_points(p == Fitting_phase::All_points || (p == Fitting_phase::Rigid && !subset));
+      // A phase starts undamped: the damping that ended the last one (grown by
+      // the failed steps of its rest state) says nothing about the new energy,
+      // and would only slow the new phase's first steps down.
+      m_lambda = (std::min)(m_lambda, initial_damping);
+      m_dt_scale = 1.;
       visitor.on_phase(p, status.iterations);
     };
     enter(phase);
@@ -849,7 +854,8 @@ private:
   bool m_correspondences_all = false;
   Eigen::VectorXd m_rest;             // the parameters the placement springs pull towards
   std::vector<double> m_spring;       // per parameter: spring stiffness per point (set at the first step)
-  double m_lambda = 1e-3;    // Gauss-Newton damping
+  static constexpr double initial_damping = 1e-3;
+  double m_lambda = initial_damping; // Gauss-Newton damping
   double m_dt_scale = 1.;    // explicit integrator: reduction of the stable step
 };
 
