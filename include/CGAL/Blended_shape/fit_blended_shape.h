@@ -269,7 +269,8 @@ auto fit_blended_shape(const PointRange& points, const NamedParameters& np = CGA
   // cross-section turned by 45 degrees, or both; see similar_superquadric()), so the
   // fit is compared with them, as EMS iterates its similarity search: each similar one is
   // fitted roughly; one clearly closer to the rough subset than the fit is
-  // fitted fully, and kept if it ends closer to all points. At most three rounds.
+  // fitted on the fit's subset, then, if closer there, on all points, and
+  // kept if it ends closer to all points. At most three rounds.
   if(all_axes)
   {
     double current = fitter->mean_squared_distance(true);
@@ -290,13 +291,26 @@ auto fit_blended_shape(const PointRange& points, const NamedParameters& np = CGA
         // fit there by a little even in the same basin.
         if(status.aborted || !(d < 0.8 * reference))
           continue;
+        // Fitted on the fit's subset first: only one that ends closer there
+        // goes on to all points (a few hundred points can be fitted closely
+        // by a superquadric that is far from the rest of a partial view).
         auto challenger = std::make_unique<Fitter>(points, m, s, point_map);
-        const Fitting_status st = challenger->run(visitor, callback);
+        Fitting_status st = challenger->run(visitor, callback, Fitting_phase::Subset);
         candidate_iterations += st.iterations;
-        const double full = challenger->mean_squared_distance(true);
+        if(!st.aborted)
+        {
+          if(!(challenger->mean_squared_distance(false) < fitter->mean_squared_distance(false)))
+            continue;
+          st = challenger->run(visitor, callback);
+          candidate_iterations += st.iterations;
+        }
         if(st.aborted)
+        {
           status.aborted = true;
-        else if(full < current)
+          continue;
+        }
+        const double full = challenger->mean_squared_distance(true);
+        if(full < current)
         {
           current = full;
           better = std::move(challenger);
