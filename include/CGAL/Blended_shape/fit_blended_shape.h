@@ -233,6 +233,11 @@ auto fit_blended_shape(const PointRange& points, const NamedParameters& np = CGA
   rough.force_tolerance = (std::max)(s.force_tolerance, 1e-2);
   rough.maximum_iterations = (std::min<std::size_t>)(s.maximum_iterations, 10);
   rough.mesh_resolution = (std::max)(2, s.mesh_resolution / 2); // the mesh only seeds the analytic closest points
+  // The challengers' fits on the subset (see below): only to compare them.
+  Fitting_settings medium = s;
+  medium.energy_tolerance = (std::max)(s.energy_tolerance, 1e-6);
+  medium.force_tolerance = (std::max)(s.force_tolerance, 1e-3);
+  medium.maximum_iterations = (std::min<std::size_t>)(s.maximum_iterations, 30);
   // A rough fit of `m` on the rough subset (the same points for every
   // candidate: same seed and subset size), with its mean squared distance there.
   std::size_t candidate_iterations = 0;
@@ -270,7 +275,8 @@ auto fit_blended_shape(const PointRange& points, const NamedParameters& np = CGA
   // fit is compared with them, as EMS iterates its similarity search: each similar one is
   // fitted roughly; one clearly closer to the rough subset than the fit is
   // fitted on the fit's subset, then, if closer there, on all points, and
-  // kept if it ends closer to all points. At most three rounds.
+  // kept if it ends closer to all points (by more than 1 % of the mean
+  // squared distance, everywhere). At most three rounds.
   if(all_axes)
   {
     double current = fitter->mean_squared_distance(true);
@@ -291,16 +297,19 @@ auto fit_blended_shape(const PointRange& points, const NamedParameters& np = CGA
         // fit there by a little even in the same basin.
         if(status.aborted || !(d < 0.8 * reference))
           continue;
-        // Fitted on the fit's subset first: only one that ends closer there
-        // goes on to all points (a few hundred points can be fitted closely
-        // by a superquadric that is far from the rest of a partial view).
-        auto challenger = std::make_unique<Fitter>(points, m, s, point_map);
+        // Fitted on the fit's subset first (with looser tolerances: only to
+        // compare): only one that ends closer there goes on to all points (a
+        // few hundred points can be fitted closely by a superquadric that is
+        // far from the rest of a partial view).
+        std::unique_ptr<Fitter> challenger = std::make_unique<Fitter>(points, m, medium, point_map);
         Fitting_status st = challenger->run(visitor, callback, Fitting_phase::Subset);
         candidate_iterations += st.iterations;
         if(!st.aborted)
         {
-          if(!(challenger->mean_squared_distance(false) < fitter->mean_squared_distance(false)))
+          Fitter& best = better ? *better : *fitter;
+          if(!(challenger->mean_squared_distance(false) < 0.99 * best.mean_squared_distance(false)))
             continue;
+          challenger = std::make_unique<Fitter>(points, challenger->model(), s, point_map);
           st = challenger->run(visitor, callback);
           candidate_iterations += st.iterations;
         }
@@ -310,7 +319,7 @@ auto fit_blended_shape(const PointRange& points, const NamedParameters& np = CGA
           continue;
         }
         const double full = challenger->mean_squared_distance(true);
-        if(full < current)
+        if(full < 0.99 * current) // by more than 1 %: not the same rest state again
         {
           current = full;
           better = std::move(challenger);
