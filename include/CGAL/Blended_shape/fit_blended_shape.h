@@ -249,21 +249,26 @@ auto fit_blended_shape(const PointRange& points, const NamedParameters& np = CGA
     distance = candidate.mean_squared_distance(false);
     return candidate.model();
   };
-  // Each z-axis choice is fitted roughly; the closest goes on.
+  // Each z-axis choice is fitted roughly, then the similar superquadrics of
+  // the closest (see below); the closest of all goes on.
   Model start_model = make_initial_model(initial, 2);
   if(all_axes)
   {
     double best_distance = HUGE_VAL;
-    for(int z_axis = 0; z_axis < 3 && !status.aborted; ++z_axis)
-    {
+    auto consider = [&](const Model& m) {
       double d;
-      const Model m = rough_fit(make_initial_model(initial, z_axis), d);
+      const Model fitted = rough_fit(m, d);
       if(d < best_distance) // strict: ties keep the earlier candidate, deterministically
       {
         best_distance = d;
-        start_model = m;
+        start_model = fitted;
       }
-    }
+    };
+    for(int z_axis = 0; z_axis < 3 && !status.aborted; ++z_axis)
+      consider(make_initial_model(initial, z_axis));
+    const Model winner = start_model;
+    for(int swap = 0; swap < number_of_similar_superquadrics && !status.aborted; ++swap)
+      consider(similar_superquadric(winner, swap));
   }
   std::unique_ptr<Fitter> fitter = std::make_unique<Fitter>(points, start_model, s, point_map);
   Fitting_status final_status = status;
