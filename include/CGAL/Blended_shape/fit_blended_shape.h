@@ -183,9 +183,10 @@ topological evolution, i.e. parts and holes, come with the blending features.)
   `mesh_resolution`, `subset_size`, `rigid_first`, `robust_weighting`, `maximum_size_factor`,
   `try_all_axes` (`bool`, default `true`: fit roughly from each of the three choices
   of the primitive's z axis among the principal directions, see make_initial_model(),
+  and from the similar superquadrics of the closest, see similar_superquadric(),
   on a 25th of the subset, at most 10 iterations each, and go on with the closest;
-  after the full fit, search its similar superquadrics, see similar_superquadric();
-  the iteration count includes these fits), and
+  after the full fit, search its similar superquadrics the same way; the
+  iteration count includes these fits; `false`: one fit from the initial ellipsoid), and
   `reference_mesh` (a pointer to a `CGAL::Surface_mesh<Point_3>`: then the
   symmetric Chamfer distance to it is reported).
 
