@@ -6,6 +6,12 @@
 // default (Gauss-Newton) integrator and 2k points with the explicit one. Prints a Markdown table (also to --output FILE).
 //
 //   fit_single_superquadric [--quick] [--output FILE]
+//   fit_single_superquadric --equivariance N [--output FILE]
+//
+// With --equivariance, it fits N random full views of 2000 points twice, as
+// sampled and rotated, translated and scaled by 3.7, and reports how far the
+// two fits are apart: relative RMS (eq. 14) and surfaces (the second against
+// the first, transformed).
 //
 // Every fit runs in its own child process, whose peak resident memory is
 // reported (points, model meshes, AABB tree and the fit together).
@@ -19,6 +25,7 @@
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 
 #include <algorithm>
+#include <cstdlib>
 #include <cstring>
 #include <iomanip>
 #include <iostream>
@@ -76,21 +83,99 @@ double median(std::vector<double> v)
   return v.empty() ? 0. : v[v.size() / 2];
 }
 
+// The table to `output` (if any), all or nothing; the exit code.
+int write_table(const std::string& output, const std::string& table)
+{
+  try
+  {
+    if(!output.empty())
+      BS::internal::write_file_atomically(output, [&](std::ostream& out) { out << table; });
+  }
+  catch(const std::exception& e)
+  {
+    std::cerr << "fit_single_superquadric: " << e.what() << '\n';
+    return 1;
+  }
+  return 0;
+}
+
+// See the header: a Markdown table of how far fits of transformed copies of
+// random clouds are apart.
+std::string equivariance_table(int cases)
+{
+  typedef K::Point_3 Point_3;
+  std::ostringstream table;
+  table << "Machine: " << BB::machine_description() << "\n\n"
+        << "| case | e1 | e2 | relative RMS difference (max of 3, relative) | surface difference / diagonal |\n"
+        << "|---:|---:|---:|---:|---:|\n";
+  int rms_misses = 0, surface_misses = 0;
+  double worst_rms = 0., worst_surface = 0.;
+  for(int c = 0; c < cases; ++c)
+  {
+    std::mt19937_64 rng(9000u + unsigned(c));
+    const auto truth = BS::internal::random_superellipsoid<K>(rng);
+    const auto pts = BS::internal::synthetic_scan(truth, 2000, false, 0.002, rng);
+    std::normal_distribution<double> g(0., 1.);
+    const Eigen::Matrix3d R = BS::internal::rotation_matrix(Eigen::Vector4d(g(rng), g(rng), g(rng), g(rng)));
+    const Eigen::Vector3d t(10. * g(rng), 10. * g(rng), 10. * g(rng));
+    const double scale = 3.7;
+    auto T = [&](const Point_3& p) {
+      const Eigen::Vector3d y = scale * (R * Eigen::Vector3d(p.x(), p.y(), p.z())) + t;
+      return Point_3(y[0], y[1], y[2]);
+    };
+    auto T_inverse = [&](const Point_3& p) {
+      const Eigen::Vector3d y = R.transpose() * (Eigen::Vector3d(p.x(), p.y(), p.z()) - t) / scale;
+      return Point_3(y[0], y[1], y[2]);
+    };
+    std::vector<Point_3> moved;
+    for(const auto& p : pts)
+      moved.push_back(T(p));
+    const auto a = BS::fit_blended_shape(pts), b = BS::fit_blended_shape(moved);
+    double rms = 0.;
+    for(std::size_t j = 0; j < 3; ++j)
+      rms = (std::max)(rms, std::abs(a.metrics.relative_rms[j] - b.metrics.relative_rms[j]) / a.metrics.relative_rms[j]);
+    const double surface = (std::max)(BS::internal::surface_distance(a.model, T, b.model),
+                                      scale * BS::internal::surface_distance(b.model, T_inverse, a.model)) /
+                           BS::internal::bounding_box_diagonal(moved);
+    rms_misses += rms > 1e-6 ? 1 : 0;
+    surface_misses += surface > 1e-6 ? 1 : 0;
+    worst_rms = (std::max)(worst_rms, rms);
+    worst_surface = (std::max)(worst_surface, surface);
+    const auto e = truth.shape().parameters();
+    table << std::setprecision(3) << "| " << c << " | " << e[3] << " | " << e[4] << " | " << rms << " | " << surface
+          << " |\n";
+  }
+  table << "\n" << cases << " cases: relative RMS apart by more than 1e-6 in " << rms_misses << " (worst "
+        << std::setprecision(2) << worst_rms << "), surfaces by more than 1e-6 of the diagonal in " << surface_misses
+        << " (worst " << worst_surface << ").\n";
+  return table.str();
+}
+
 } // namespace
 
 int main(int argc, char** argv)
 {
   bool quick = false;
+  int equivariance = 0;
   std::string output;
   for(int i = 1; i < argc; ++i)
   {
     if(std::strcmp(argv[i], "--quick") == 0) quick = true;
     else if(std::strcmp(argv[i], "--output") == 0 && i + 1 < argc) output = argv[++i];
+    else if(std::strcmp(argv[i], "--equivariance") == 0 && i + 1 < argc && std::atoi(argv[i + 1]) > 0)
+      equivariance = std::atoi(argv[++i]);
     else
     {
-      std::cerr << "usage: fit_single_superquadric [--quick] [--output FILE]\n";
+      std::cerr << "usage: fit_single_superquadric [--quick] [--output FILE]\n"
+                   "       fit_single_superquadric --equivariance N [--output FILE]\n";
       return 2;
     }
+  }
+  if(equivariance > 0)
+  {
+    const std::string table = equivariance_table(equivariance);
+    std::cout << table;
+    return write_table(output, table);
   }
   std::vector<Config> configs;
   for(std::size_t n : {std::size_t(2000), std::size_t(20000), std::size_t(200000)})
@@ -151,17 +236,5 @@ int main(int argc, char** argv)
     std::cout << row.str() << std::flush;
     table << row.str();
   }
-  if(!output.empty())
-  {
-    try
-    {
-      BS::internal::write_file_atomically(output, [&](std::ostream& out) { out << table.str(); });
-    }
-    catch(const std::exception& e)
-    {
-      std::cerr << "fit_single_superquadric: " << e.what() << '\n';
-      return 1;
-    }
-  }
-  return 0;
+  return write_table(output, table.str());
 }

@@ -181,28 +181,6 @@ void test_recovery(int full_views, int single_views, std::mt19937_64& rng)
   }
 }
 
-// The largest distance from the points of `from` (random chart points),
-// moved by `T`, to the surface of `to`: closest points on a fine
-// tessellation of `to`, refined on its analytic surface. Parameterization-free:
-// the same surface may come out with its axes or exponents permuted.
-template <class K, class Transform>
-double surface_distance(const Model<K>& from, const Transform& T, const Model<K>& to)
-{
-  const auto meshes = BS::make_chart_meshes(to, 24);
-  const BS::Closest_point_locator<K> locator(meshes);
-  std::mt19937_64 r(3);
-  double worst = 0.;
-  for(int i = 0; i < 500; ++i)
-  {
-    const BS::Chart_point u = BS::random_chart_point(from.shape(), std::size_t(i % 2), r);
-    const typename K::Point_3 x = T(from.point(u));
-    const Eigen::Vector3d p(x.x(), x.y(), x.z());
-    const BS::Chart_point v = BS::refine_closest_point(to, p, locator.locate(x).chart_point, 100);
-    worst = (std::max)(worst, std::sqrt(CGAL::to_double(CGAL::squared_distance(x, to.point(v)))));
-  }
-  return worst;
-}
-
 // Rotating, translating and scaling the input moves the fitted surface the
 // same way and keeps the relative RMS, for random superellipsoids over the
 // whole exponent range (in and out of the (1, 2] range where the map's chart
@@ -238,8 +216,8 @@ void test_equivariance(int cases, std::mt19937_64& rng)
                label.str() << ": relative RMS " << j << ": " << std::setprecision(12)
                            << a.metrics.relative_rms[std::size_t(j)] << " vs " << b.metrics.relative_rms[std::size_t(j)]);
     const double diag = diagonal<K>(moved);
-    const double worst = (std::max)(surface_distance<K>(a.model, T, b.model),
-                                    scale * surface_distance<K>(b.model, T_inverse, a.model));
+    const double worst = (std::max)(BS::internal::surface_distance(a.model, T, b.model),
+                                    scale * BS::internal::surface_distance(b.model, T_inverse, a.model));
     BS_CHECK(worst <= 1e-6 * diag, label.str() << ": transformed surface differs by " << worst / diag << " of the diagonal");
   }
 }

@@ -2,11 +2,16 @@
 #ifndef CGAL_BLENDED_SHAPE_INTERNAL_COMPARE_SUPERQUADRICS_H
 #define CGAL_BLENDED_SHAPE_INTERNAL_COMPARE_SUPERQUADRICS_H
 
+#include <CGAL/Blended_shape/Chart_mesh.h>
+#include <CGAL/Blended_shape/Closest_point_locator.h>
+#include <CGAL/Blended_shape/check_primitive.h>
+
 #include <Eigen/Core>
 
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <random>
 
 namespace CGAL {
 namespace Blended_shapes {
@@ -51,6 +56,31 @@ Superquadric_comparison compare_superquadrics(const Model& fit, const Model& tru
     c.exponent_error = (std::max)({std::abs(qf[3] - qt[3]), std::abs(qf[4] - qt[4]),
                                    std::abs(qf[3] - qt[4]), std::abs(qf[4] - qt[3])});
   return c;
+}
+
+// The largest distance from points of `from` (500 random chart points of
+// its shape, moved by `T`) to the surface of `to` (closest points on a fine
+// tessellation, refined on the analytic surface): how far apart two fitted
+// surfaces are, whatever their parameterizations (the same surface may come
+// out with its axes or exponents permuted). For tests and benchmarks.
+template <class Model, class Transform>
+double surface_distance(const Model& from, const Transform& T, const Model& to)
+{
+  const auto meshes = make_chart_meshes(to, 24);
+  const Closest_point_locator<typename Model::Geom_traits> locator(meshes);
+  std::mt19937_64 r(3);
+  double worst = 0.;
+  for(int i = 0; i < 500; ++i)
+  {
+    const Chart_point u = random_chart_point(from.shape(), std::size_t(i % 2), r);
+    const auto x = T(from.point(u));
+    const Eigen::Vector3d p(CGAL::to_double(x.x()), CGAL::to_double(x.y()), CGAL::to_double(x.z()));
+    const Chart_point v = refine_closest_point(to, p, locator.locate(x).chart_point, 100);
+    const auto y = to.point(v);
+    worst = (std::max)(worst, (p - Eigen::Vector3d(CGAL::to_double(y.x()), CGAL::to_double(y.y()),
+                                                   CGAL::to_double(y.z()))).norm());
+  }
+  return worst;
 }
 
 } // namespace internal
