@@ -54,6 +54,9 @@ public:
   CGAL::Blended_shapes::Parameter_kind parameter_kind(std::size_t i) const;
   /// Whether parameter `i` is part of the rigid pose (moved alone in the `Rigid` phase; never capped).
   bool is_pose_parameter(std::size_t i) const;
+  /// Whether parameter `i` places one component relative to another (held by
+  /// the fitter's loose placement spring, `Fitting_settings::placement_stiffness`).
+  bool is_placement_parameter(std::size_t i) const;
 
   /// The number of charts.
   std::size_t number_of_charts() const;
@@ -63,6 +66,11 @@ public:
   bool is_on_surface(const CGAL::Blended_shapes::Chart_point& u) const;
   /// The canonical representative of `u` in `c`, if `u` is on the surface; otherwise false.
   bool canonical_surface_point(const CGAL::Blended_shapes::Chart_point& u, CGAL::Blended_shapes::Chart_point& c) const;
+  /// Other chart points of the surface point at the canonical point `u`, in
+  /// whose coordinates a closest-point projection that reached the edge of
+  /// `u`'s chart part goes on (the added component's chart beyond a blend's
+  /// strip); empty where charts overlap enough.
+  std::vector<CGAL::Blended_shapes::Chart_point> alternative_chart_points(const CGAL::Blended_shapes::Chart_point& u) const;
 
   /// `x(u)` (for any `u` in its chart's domain: the meshes are positioned with it).
   Point_3 point(const CGAL::Blended_shapes::Chart_point& u) const;
