@@ -19,6 +19,7 @@
 
 #include <CGAL/Blended_shape/fit_blended_shape.h>
 #include <CGAL/Blended_shape/internal/compare_superquadrics.h>
+#include <CGAL/Blended_shape/internal/equivariance.h>
 #include <CGAL/Blended_shape/internal/write_file_atomically.h>
 #include <CGAL/Blended_shape/internal/synthetic_scans.h>
 
@@ -103,7 +104,6 @@ int write_table(const std::string& output, const std::string& table)
 // random clouds are apart.
 std::string equivariance_table(int cases)
 {
-  typedef K::Point_3 Point_3;
   std::ostringstream table;
   table << "Machine: " << BB::machine_description() << "\n\n"
         << "| case | e1 | e2 | relative RMS difference (max of 3, relative) | surface difference / diagonal |\n"
@@ -115,28 +115,9 @@ std::string equivariance_table(int cases)
     std::mt19937_64 rng(9000u + unsigned(c));
     const auto truth = BS::internal::random_superellipsoid<K>(rng);
     const auto pts = BS::internal::synthetic_scan(truth, 2000, false, 0.002, rng);
-    std::normal_distribution<double> g(0., 1.);
-    const Eigen::Matrix3d R = BS::internal::rotation_matrix(Eigen::Vector4d(g(rng), g(rng), g(rng), g(rng)));
-    const Eigen::Vector3d t(10. * g(rng), 10. * g(rng), 10. * g(rng));
-    const double scale = 3.7;
-    auto T = [&](const Point_3& p) {
-      const Eigen::Vector3d y = scale * (R * Eigen::Vector3d(p.x(), p.y(), p.z())) + t;
-      return Point_3(y[0], y[1], y[2]);
-    };
-    auto T_inverse = [&](const Point_3& p) {
-      const Eigen::Vector3d y = R.transpose() * (Eigen::Vector3d(p.x(), p.y(), p.z()) - t) / scale;
-      return Point_3(y[0], y[1], y[2]);
-    };
-    std::vector<Point_3> moved;
-    for(const auto& p : pts)
-      moved.push_back(T(p));
-    const auto a = BS::fit_blended_shape(pts), b = BS::fit_blended_shape(moved);
-    double rms = 0.;
-    for(std::size_t j = 0; j < 3; ++j)
-      rms = (std::max)(rms, std::abs(a.metrics.relative_rms[j] - b.metrics.relative_rms[j]) / a.metrics.relative_rms[j]);
-    const double surface = (std::max)(BS::internal::surface_distance(a.model, T, b.model),
-                                      scale * BS::internal::surface_distance(b.model, T_inverse, a.model)) /
-                           BS::internal::bounding_box_diagonal(moved);
+    const BS::internal::Equivariance_gap gap = BS::internal::equivariance_gap(pts, rng);
+    const double rms = *std::max_element(gap.relative_rms.begin(), gap.relative_rms.end());
+    const double surface = gap.surface;
     rms_misses += rms > 1e-6 ? 1 : 0;
     surface_misses += surface > 1e-6 ? 1 : 0;
     worst_rms = (std::max)(worst_rms, rms);
