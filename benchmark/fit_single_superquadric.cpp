@@ -17,11 +17,11 @@
 // reported (points, model meshes, AABB tree and the fit together).
 #include "benchmark_util.h"
 
-#include <CGAL/Blended_shape/fit_blended_shape.h>
-#include <CGAL/Blended_shape/internal/compare_superquadrics.h>
-#include <CGAL/Blended_shape/internal/equivariance.h>
+#include <CGAL/Blended_shape/Fitting/fit_blended_shape.h>
+#include <blended_shape_testing/compare_superquadrics.h>
+#include <blended_shape_testing/equivariance.h>
 #include <CGAL/Blended_shape/internal/write_file_atomically.h>
-#include <CGAL/Blended_shape/internal/synthetic_scans.h>
+#include <blended_shape_testing/synthetic_scans.h>
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 
@@ -61,9 +61,9 @@ struct Config
 Fit_outcome fit_one(const Config& c, unsigned int shape_seed)
 {
   std::mt19937_64 rng(shape_seed);
-  const auto truth = BS::internal::random_superellipsoid<K>(rng);
+  const auto truth = BS::testing::random_superellipsoid<K>(rng);
   double sigma = 0.;
-  const auto pts = BS::internal::synthetic_scan(truth, c.points, c.single_view, 0.002, rng, &sigma);
+  const auto pts = BS::testing::synthetic_scan(truth, c.points, c.single_view, 0.002, rng, &sigma);
   const std::size_t limit = c.integrator == BS::Integrator::Explicit ? 3000 : 200;
   const auto r = BS::fit_blended_shape(pts, BS::parameters::integrator(c.integrator).number_of_iterations(limit));
   Fit_outcome o;
@@ -71,7 +71,7 @@ Fit_outcome fit_one(const Config& c, unsigned int shape_seed)
   o.seconds = r.metrics.seconds;
   o.relative_rms_mean = (r.metrics.relative_rms[0] + r.metrics.relative_rms[1] + r.metrics.relative_rms[2]) / 3.;
   o.rms_over_noise = r.metrics.rms / sigma;
-  const auto cmp = BS::internal::compare_superquadrics(r.model, truth);
+  const auto cmp = BS::testing::compare_superquadrics(r.model, truth);
   o.size_error = cmp.size_error;
   o.exponent_error = cmp.exponent_error;
   o.converged = r.metrics.converged;
@@ -113,9 +113,9 @@ std::string equivariance_table(int cases)
   for(int c = 0; c < cases; ++c)
   {
     std::mt19937_64 rng(9000u + unsigned(c));
-    const auto truth = BS::internal::random_superellipsoid<K>(rng);
-    const auto pts = BS::internal::synthetic_scan(truth, 2000, false, 0.002, rng);
-    const BS::internal::Equivariance_gap gap = BS::internal::equivariance_gap(pts, rng);
+    const auto truth = BS::testing::random_superellipsoid<K>(rng);
+    const auto pts = BS::testing::synthetic_scan(truth, 2000, false, 0.002, rng);
+    const BS::testing::Equivariance_gap gap = BS::testing::equivariance_gap(pts, rng);
     const double rms = *std::max_element(gap.relative_rms.begin(), gap.relative_rms.end());
     const double surface = gap.surface;
     rms_misses += rms > 1e-6 ? 1 : 0;

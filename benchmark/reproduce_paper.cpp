@@ -9,13 +9,13 @@
 //   reproduce_paper [--csv FILE] [--markdown FILE]
 #include "benchmark_util.h"
 
-#include <CGAL/Blended_shape/CAD_objects.h>
-#include <CGAL/Blended_shape/Range_scan_simulator.h>
-#include <CGAL/Blended_shape/fit_blended_shape.h>
-#include <CGAL/Blended_shape/internal/synthetic_scans.h>
+#include <CGAL/Blended_shape/Scanning/CAD_objects.h>
+#include <CGAL/Blended_shape/Scanning/Range_scan_simulator.h>
+#include <CGAL/Blended_shape/Fitting/fit_blended_shape.h>
+#include <blended_shape_testing/synthetic_scans.h>
 #include <CGAL/Blended_shape/internal/write_file_atomically.h>
-#include <CGAL/Blended_shape/read_points.h>
-#include <CGAL/Blended_shape/read_triangle_mesh.h>
+#include <CGAL/Blended_shape/IO/read_points.h>
+#include <CGAL/Blended_shape/IO/read_triangle_mesh.h>
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 
@@ -152,7 +152,7 @@ int main(int argc, char** argv)
                                : BS::fit_blended_shape(e.points);
     const BS::Fit_metrics& m = r.metrics;
     const Paper_row& p = paper[e.paper_row];
-    const double diag = BS::internal::bounding_box_diagonal(e.points);
+    const double diag = BS::testing::bounding_box_diagonal(e.points);
     const std::string chamfer = m.chamfer_distance ? fixed(*m.chamfer_distance / diag, 4) : std::string("-");
     std::ostringstream row;
     row << "| " << e.name << " | " << m.number_of_points << " | " << p.parameters << " / " << m.number_of_parameters

@@ -9,10 +9,10 @@
 //
 // Usage: build_mug_by_hand [OUT_PREFIX]      (default prefix: mug_by_hand)
 // writes OUT_PREFIX.off, OUT_PREFIX.ply and OUT_PREFIX.dot.
-#include <CGAL/Blended_shape/Blended_shape.h>
-#include <CGAL/Blended_shape/Blended_shape_mesh.h>
-#include <CGAL/Blended_shape/Blended_shape_mesh_io.h>
-#include <CGAL/Blended_shape/Blending_hierarchy.h>
+#include <CGAL/Blended_shape/Blending/Blended_shape.h>
+#include <CGAL/Blended_shape/Blending/Blended_shape_mesh.h>
+#include <CGAL/Blended_shape/IO/Blended_shape_mesh_io.h>
+#include <CGAL/Blended_shape/Blending/Blending_hierarchy.h>
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Polygon_mesh_processing/repair.h>

@@ -5,9 +5,9 @@
 // charts and their quotient) with a linear taper along z, and passes the
 // package's generic checkers: the analytic parameter and chart Jacobians
 // agree with finite differences and the two charts agree where they overlap.
-#include <CGAL/Blended_shape/Chart_mesh.h>
-#include <CGAL/Blended_shape/Superquadric_ellipsoid.h>
-#include <CGAL/Blended_shape/check_primitive.h>
+#include <CGAL/Blended_shape/Primitives/Chart_mesh.h>
+#include <CGAL/Blended_shape/Primitives/Superquadric_ellipsoid.h>
+#include <CGAL/Blended_shape/Primitives/check_primitive.h>
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 

@@ -5,7 +5,7 @@
 #include "test_util.h"
 #include "tool_test_util.h"
 
-#include <CGAL/Blended_shape/internal/synthetic_scans.h>
+#include <blended_shape_testing/synthetic_scans.h>
 
 #include <CGAL/IO/polygon_soup_io.h>
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
@@ -200,8 +200,8 @@ void test_bad_input(const Temp_dir& dir)
 void test_good_run(const Temp_dir& dir)
 {
   std::mt19937_64 rng(4);
-  const auto model = BS::internal::random_superellipsoid<K>(rng);
-  write_points(dir / "cloud.xyz", BS::internal::synthetic_scan(model, 800, true, 0.002, rng));
+  const auto model = BS::testing::random_superellipsoid<K>(rng);
+  write_points(dir / "cloud.xyz", BS::testing::synthetic_scan(model, 800, true, 0.002, rng));
   std::string err, out;
   const int code = run(quote(tool) + " " + quote(dir / "cloud.xyz") + " --mesh " + quote(dir / "m.ply") +
                          " --hierarchy " + quote(dir / "h.dot") + " --model " + quote(dir / "model.json"),

@@ -7,9 +7,9 @@
 #include "test_util.h"
 #include "blended_shape_test_util.h"
 
-#include <CGAL/Blended_shape/Blended_shape_fitter.h>
-#include <CGAL/Blended_shape/Deformable_blended_model.h>
-#include <CGAL/Blended_shape/sample_model.h>
+#include <CGAL/Blended_shape/Fitting/Blended_shape_fitter.h>
+#include <CGAL/Blended_shape/Fitting/Deformable_blended_model.h>
+#include <CGAL/Blended_shape/Fitting/sample_model.h>
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Simple_cartesian.h>

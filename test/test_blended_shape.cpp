@@ -10,8 +10,8 @@
 #include "test_util.h"
 #include "blended_shape_test_util.h"
 
-#include <CGAL/Blended_shape/Blended_shape.h>
-#include <CGAL/Blended_shape/Blended_shape_mesh.h>
+#include <CGAL/Blended_shape/Blending/Blended_shape.h>
+#include <CGAL/Blended_shape/Blending/Blended_shape_mesh.h>
 
 #include <CGAL/Polygon_mesh_processing/orientation.h>
 #include <CGAL/Polygon_mesh_processing/repair.h>

@@ -8,9 +8,9 @@
 // with a useful message, with both supported kernels.
 #include "test_util.h"
 
-#include <CGAL/Blended_shape/Blended_shape.h>
-#include <CGAL/Blended_shape/Blended_shape_io.h>
-#include <CGAL/Blended_shape/internal/json.h>
+#include <CGAL/Blended_shape/Blending/Blended_shape.h>
+#include <CGAL/Blended_shape/IO/Blended_shape_io.h>
+#include <CGAL/Blended_shape/IO/internal/json.h>
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Simple_cartesian.h>

@@ -9,7 +9,7 @@
 #include "test_util.h"
 #include "blended_shape_test_util.h"
 
-#include <CGAL/Blended_shape/Blending_hierarchy.h>
+#include <CGAL/Blended_shape/Blending/Blending_hierarchy.h>
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Simple_cartesian.h>

@@ -5,8 +5,8 @@
 // analytic derivative against central finite differences.
 #include "test_util.h"
 
-#include <CGAL/Blended_shape/Blending_function.h>
-#include <CGAL/Blended_shape/Blending_region.h>
+#include <CGAL/Blended_shape/Blending/Blending_function.h>
+#include <CGAL/Blended_shape/Blending/Blending_region.h>
 
 #include <Eigen/Dense>
 #include <Eigen/Geometry>

@@ -5,11 +5,11 @@
 // determinism, abort, and bad input.
 #include "test_util.h"
 
-#include <CGAL/Blended_shape/fit_blended_shape.h>
-#include <CGAL/Blended_shape/check_primitive.h>
-#include <CGAL/Blended_shape/internal/compare_superquadrics.h>
-#include <CGAL/Blended_shape/internal/equivariance.h>
-#include <CGAL/Blended_shape/internal/synthetic_scans.h>
+#include <CGAL/Blended_shape/Fitting/fit_blended_shape.h>
+#include <CGAL/Blended_shape/Primitives/check_primitive.h>
+#include <blended_shape_testing/compare_superquadrics.h>
+#include <blended_shape_testing/equivariance.h>
+#include <blended_shape_testing/synthetic_scans.h>
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Simple_cartesian.h>
@@ -34,16 +34,16 @@ template <class K>
 using Model = BS::Deformable_model<BS::Superquadric_ellipsoid<K>>;
 
 template <class K>
-Model<K> random_superellipsoid(std::mt19937_64& rng) { return BS::internal::random_superellipsoid<K>(rng); }
+Model<K> random_superellipsoid(std::mt19937_64& rng) { return BS::testing::random_superellipsoid<K>(rng); }
 
 template <class K>
-double diagonal(const std::vector<typename K::Point_3>& pts) { return BS::internal::bounding_box_diagonal(pts); }
+double diagonal(const std::vector<typename K::Point_3>& pts) { return BS::testing::bounding_box_diagonal(pts); }
 
 template <class K>
 std::vector<typename K::Point_3> scan(const Model<K>& model, std::size_t n, bool single_view, double noise,
                                       std::mt19937_64& rng, double* sigma_out = nullptr)
 {
-  return BS::internal::synthetic_scan(model, n, single_view, noise, rng, sigma_out);
+  return BS::testing::synthetic_scan(model, n, single_view, noise, rng, sigma_out);
 }
 
 template <class K>
@@ -144,11 +144,11 @@ void test_energy_decrease(BS::Integrator integrator, std::mt19937_64& rng)
 }
 
 // The fitted superellipsoid against the true one, modulo its symmetries
-// (axis permutations, quaternion sign; see internal::compare_superquadrics).
+// (axis permutations, quaternion sign; see testing::compare_superquadrics).
 template <class K>
 void check_recovered(const Model<K>& fit, const Model<K>& truth, const std::string& label)
 {
-  const auto c = BS::internal::compare_superquadrics(fit, truth);
+  const auto c = BS::testing::compare_superquadrics(fit, truth);
   BS_CHECK(c.axis_alignment > 0.98, label << ": axes not aligned, |cos| " << c.axis_alignment);
   BS_CHECK(c.size_error < 0.03, label << ": size error " << c.size_error << ", fit " << fit.shape().parameters().transpose());
   BS_CHECK(c.exponent_error < 0.1, label << ": exponent error " << c.exponent_error
@@ -193,7 +193,7 @@ void test_equivariance(int cases, std::mt19937_64& rng)
   {
     const Model<K> truth = random_superellipsoid<K>(rng);
     const auto pts = scan<K>(truth, cloud_size(2000), false, 0.002, rng);
-    const BS::internal::Equivariance_gap gap = BS::internal::equivariance_gap(pts, rng);
+    const BS::testing::Equivariance_gap gap = BS::testing::equivariance_gap(pts, rng);
     std::ostringstream label;
     label << "equivariance #" << c << ", truth " << truth.shape().parameters().transpose();
     for(int j = 0; j < 3; ++j)

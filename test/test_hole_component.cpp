@@ -7,10 +7,10 @@
 // the generic checks on it), and the errors, with both supported kernels.
 #include "test_util.h"
 
-#include <CGAL/Blended_shape/Chart_mesh.h>
-#include <CGAL/Blended_shape/Hole_component.h>
-#include <CGAL/Blended_shape/Superquadric_toroid.h>
-#include <CGAL/Blended_shape/check_primitive.h>
+#include <CGAL/Blended_shape/Primitives/Chart_mesh.h>
+#include <CGAL/Blended_shape/Primitives/Hole_component.h>
+#include <CGAL/Blended_shape/Primitives/Superquadric_toroid.h>
+#include <CGAL/Blended_shape/Primitives/check_primitive.h>
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Polygon_mesh_processing/border.h>

@@ -3,10 +3,10 @@
 // file format, both kernels. Every test writes its own small files into a
 // fresh temporary directory, removed at the end.
 
-#include <CGAL/Blended_shape/Input_error.h>
-#include <CGAL/Blended_shape/check_points.h>
-#include <CGAL/Blended_shape/read_points.h>
-#include <CGAL/Blended_shape/read_triangle_mesh.h>
+#include <CGAL/Blended_shape/IO/Input_error.h>
+#include <CGAL/Blended_shape/IO/check_points.h>
+#include <CGAL/Blended_shape/IO/read_points.h>
+#include <CGAL/Blended_shape/IO/read_triangle_mesh.h>
 
 #include "test_util.h"
 

@@ -4,13 +4,13 @@
 // moment initialization, with both supported kernels.
 #include "test_util.h"
 
-#include <CGAL/Blended_shape/Chart_mesh.h>
-#include <CGAL/Blended_shape/Deformable_model.h>
-#include <CGAL/Blended_shape/Hole_component.h>
-#include <CGAL/Blended_shape/Superquadric_ellipsoid.h>
-#include <CGAL/Blended_shape/Superquadric_toroid.h>
-#include <CGAL/Blended_shape/check_primitive.h>
-#include <CGAL/Blended_shape/initialize_from_moments.h>
+#include <CGAL/Blended_shape/Primitives/Chart_mesh.h>
+#include <CGAL/Blended_shape/Fitting/Deformable_model.h>
+#include <CGAL/Blended_shape/Primitives/Hole_component.h>
+#include <CGAL/Blended_shape/Primitives/Superquadric_ellipsoid.h>
+#include <CGAL/Blended_shape/Primitives/Superquadric_toroid.h>
+#include <CGAL/Blended_shape/Primitives/check_primitive.h>
+#include <CGAL/Blended_shape/Fitting/initialize_from_moments.h>
 #include <CGAL/Blended_shape/internal/quaternion.h>
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>

@@ -10,9 +10,9 @@
 #include "test_util.h"
 #include "blended_shape_test_util.h"
 
-#include <CGAL/Blended_shape/Blended_shape.h>
-#include <CGAL/Blended_shape/Blended_shape_mesh.h>
-#include <CGAL/Blended_shape/Quotient_domain.h>
+#include <CGAL/Blended_shape/Blending/Blended_shape.h>
+#include <CGAL/Blended_shape/Blending/Blended_shape_mesh.h>
+#include <CGAL/Blended_shape/Blending/Quotient_domain.h>
 
 #include <CGAL/AABB_face_graph_triangle_primitive.h>
 #include <CGAL/AABB_traits.h>

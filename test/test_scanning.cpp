@@ -3,8 +3,8 @@
 // the two command-line tools built on them. Geometric claims are checked
 // against brute force over all triangles; randomness against its statistics.
 
-#include <CGAL/Blended_shape/CAD_objects.h>
-#include <CGAL/Blended_shape/Range_scan_simulator.h>
+#include <CGAL/Blended_shape/Scanning/CAD_objects.h>
+#include <CGAL/Blended_shape/Scanning/Range_scan_simulator.h>
 
 #include "test_util.h"
 #include "tool_test_util.h"

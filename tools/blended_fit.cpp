@@ -2,9 +2,9 @@
 // blended_fit: fit a model to a point cloud and report it as JSON.
 #include "internal/command_line.h"
 
-#include <CGAL/Blended_shape/fit_blended_shape.h>
+#include <CGAL/Blended_shape/Fitting/fit_blended_shape.h>
 #include <CGAL/Blended_shape/internal/write_file_atomically.h>
-#include <CGAL/Blended_shape/read_points.h>
+#include <CGAL/Blended_shape/IO/read_points.h>
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 

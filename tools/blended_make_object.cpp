@@ -2,7 +2,7 @@
 // blended_make_object: writes one of the CAD test objects of the paper's
 // experiments (sec. 6) as a closed triangle mesh.
 
-#include <CGAL/Blended_shape/CAD_objects.h>
+#include <CGAL/Blended_shape/Scanning/CAD_objects.h>
 #include <CGAL/Blended_shape/internal/write_file_atomically.h>
 
 #include "internal/command_line.h"

@@ -2,8 +2,8 @@
 // blended_scan: simulated range scan of a triangle mesh (the "CAD utility which
 // simulates the scanning process on a polygon mesh" of the paper's sec. 6).
 
-#include <CGAL/Blended_shape/Range_scan_simulator.h>
-#include <CGAL/Blended_shape/read_triangle_mesh.h>
+#include <CGAL/Blended_shape/Scanning/Range_scan_simulator.h>
+#include <CGAL/Blended_shape/IO/read_triangle_mesh.h>
 
 #include "internal/command_line.h"
 

@@ -1,5 +1,5 @@
 /*!
-\class BlendedShapeFittingVisitor BlendedShapeFittingVisitor.h <CGAL/Blended_shape/Fitting_visitor.h>
+\class BlendedShapeFittingVisitor BlendedShapeFittingVisitor.h <CGAL/Blended_shape/Fitting/Fitting_visitor.h>
 \ingroup PkgBlendedShapeConcepts
 \cgalConcept
 

@@ -9,8 +9,8 @@
 //                                       and the chart of its canonical chart point
 //   F chart i j k                       a face (vertex indices within its chart,
 //                                       counterclockwise in the chart plane)
-#include <CGAL/Blended_shape/Chart_mesh.h>
-#include <CGAL/Blended_shape/Superquadric_ellipsoid.h>
+#include <CGAL/Blended_shape/Primitives/Chart_mesh.h>
+#include <CGAL/Blended_shape/Primitives/Superquadric_ellipsoid.h>
 
 #include <CGAL/Simple_cartesian.h>
 

@@ -1,0 +1,8 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
+// Evolution (sec. 4, 5.4): the decisions that change a model's structure while it fits
+// (part splitting from force regions, hole blends from self-proximity) and the
+// evolving fit that applies them. Its headers live in Evolution/.
+#ifndef CGAL_BLENDED_SHAPE_EVOLUTION_H
+#define CGAL_BLENDED_SHAPE_EVOLUTION_H
+
+#endif // CGAL_BLENDED_SHAPE_EVOLUTION_H

@@ -1,0 +1,865 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
+#ifndef CGAL_BLENDED_SHAPE_FITTING_BLENDED_SHAPE_FITTER_H
+#define CGAL_BLENDED_SHAPE_FITTING_BLENDED_SHAPE_FITTER_H
+
+#include <CGAL/Blended_shape/Primitives/Chart_mesh.h>
+#include <CGAL/Blended_shape/Fitting/Closest_point_locator.h>
+#include <CGAL/Blended_shape/Fitting/Fitting_visitor.h>
+#include <CGAL/Blended_shape/IO/check_points.h>
+#include <CGAL/Blended_shape/internal/Parameter_table.h>
+
+#include <CGAL/Bbox_3.h>
+#include <CGAL/property_map.h>
+
+#include <Eigen/Dense>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <functional>
+#include <memory>
+#include <numeric>
+#include <random>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace CGAL {
+namespace Blended_shapes {
+
+/// \ingroup PkgBlendedShapeFitting
+/// How the dynamics `dq/dt = f_q` (eq. 7) are integrated.
+enum class Integrator
+{
+  /// The paper's explicit first-order dynamics: `q <- q + dt f_q` with
+  /// `dt = 1 / lambda_max(J^T J)`, the largest step that is stable for the
+  /// linearized dynamics, halved until the step is accepted (see Blended_shape_fitter::step()).
+  Explicit,
+  /// An implicit (damped Gauss-Newton, Levenberg-Marquardt) step of the same dynamics with the
+  /// same correspondences: `(J^T J + lambda diag(J^T J)) dq = J^T r`.
+  /// Same rest states, far fewer iterations. The default.
+  Gauss_newton
+};
+
+/// \ingroup PkgBlendedShapeFitting
+/// Optional down-weighting of far points (stray points of real scans).
+enum class Robust_weighting
+{
+  None,  ///< every point pulls with weight 1 (the paper)
+  /// Cauchy weights `w_i = 1 / (1 + (r_i / c)^2)`, recomputed every iteration from the
+  /// distances `r_i` to the model, with `c = 2.385 * 1.4826 * median(r_i)`.
+  Cauchy
+};
+
+/// \ingroup PkgBlendedShapeFitting
+/// Everything that steers a fit. The free function fit_blended_shape() sets
+/// these from named parameters.
+struct Fitting_settings
+{
+  Integrator integrator = Integrator::Gauss_newton; ///< the integration scheme
+  std::size_t maximum_iterations = 100;   ///< iterations over all phases
+  double energy_tolerance = 1e-10;        ///< relative energy decrease of one step
+  double force_tolerance = 1e-6;          ///< largest scaled parameter force, see Step_report::scaled_force
+  std::size_t steady_iterations = 2;      ///< consecutive steps under both tolerances
+  int mesh_resolution = 10;               ///< chart tessellation (rings from pole to equator)
+  int projection_iterations = 20;         ///< at most this many Gauss-Newton steps from a start to the closest point on the surface
+  std::size_t subset_size = 4000;         ///< points used before the all-points phase (0: all from the start)
+  unsigned int random_seed = 0;           ///< chooses the subset
+  bool rigid_first = false;               ///< parameter scheduling: translation and rotation alone first
+  std::size_t rigid_iterations = 5;       ///< at most this many rigid-only steps
+  Robust_weighting robust_weighting = Robust_weighting::None; ///< weighting of far points
+  /// Shape lengths (Parameter_kind::Length, e.g. semi-axes) are kept at most this
+  /// factor times the diameter of the points about their centroid (twice the
+  /// largest distance to it; unlike a bounding box, it does not depend on the
+  /// orientation of the cloud): with one view of an object nothing else stops
+  /// the model from growing where there is no data.
+  double maximum_size_factor = 1.;
+  /// The loose spring of sec. 3.5 that holds the placement of each added
+  /// component of a blended model (relative to its parent) to where it was
+  /// when the fit started: its stiffness per parameter is this fraction of
+  /// the mean stiffness the data give that placement's translation or
+  /// quaternion at the first step. It keeps the join good where the data
+  /// leave a placement free (a hole turning about its axis, a part sliding
+  /// along its base) and biases the rest by about this fraction of the
+  /// distance moved. 0: no spring.
+  double placement_stiffness = 0.01;
+  double maximum_running_time = HUGE_VAL; ///< seconds
+};
+
+/// \ingroup PkgBlendedShapeFitting
+/// What one iteration did.
+struct Step_report
+{
+  std::size_t points_used = 0; ///< the points whose forces the step used (the subset or all)
+  /// The true energy `(1/2) sum_i rho(|p_i - x(u_i)|)` at the closest points
+  /// `u_i` of the model before the step (`rho(d) = d^2`, or the Cauchy loss
+  /// `rho(d) = c^2 log(1 + (d / c)^2)`).
+  double energy_before = 0.;
+  double energy_after = 0.;   ///< the same, with the closest points of the new model
+  /// The energy of the linearized dynamics at the fixed correspondences (u_i, n_i, w_i)
+  /// of the step, `(1/2) sum_i w_i (n_i . (p_i - x(u_i)))^2`, before the step.
+  double fixed_energy_before = 0.;
+  double fixed_energy_after = 0.; ///< the same energy after the step
+  /// `max_k |f_q[k]| / sqrt(2 E (J^T J)[k][k])`: the largest cosine between the residual
+  /// and a parameter direction; 0 at a rest state, scale-free.
+  double scaled_force = 0.;
+  bool accepted = false;      ///< whether the parameters moved
+  /// No step can lower the energy any more: the proposed change is negligible, or the
+  /// damping (Gauss-Newton) or the step-size reduction (explicit) is exhausted.
+  bool stalled = false;
+};
+
+/// \ingroup PkgBlendedShapeFitting
+/// One data force (eq. 8): point `index` is attached to the model point
+/// x(`chart_point`), its closest point, and pulls with `force` = w n n^T (p - x).
+template <class GeomTraits>
+struct Data_force
+{
+  std::size_t index;                         ///< index of the data point in the input
+  Chart_point chart_point;                   ///< its closest point u on the model
+  typename GeomTraits::Point_3 model_point;  ///< x(u)
+  typename GeomTraits::Vector_3 force;       ///< w n n^T (p - x(u))
+  double weight;                             ///< w: 1, or the Cauchy weight
+};
+
+/// \ingroup PkgBlendedShapeFitting
+/// How a run() ended.
+struct Fitting_status
+{
+  std::size_t iterations = 0; ///< iterations done (accepted or not)
+  bool converged = false;  ///< steady state reached on all points
+  bool aborted = false;    ///< the callback returned false
+  bool timed_out = false;  ///< maximum_running_time reached
+  double seconds = 0.;     ///< wall time of run()
+};
+
+/*!
+\ingroup PkgBlendedShapeFitting
+
+The estimation engine of sec. 5.1-5.3 with explicit steps: data forces from
+closest points (eq. 8), one integration step of the dynamics (eq. 7), and a
+run loop with phases and steady-state detection.
+
+Each step: (1) the chart meshes are positioned by the current model and the
+AABB tree of Closest_point_locator is rebuilt over them when searched; (2)
+each data point in use is attached to its closest mesh point, whose chart,
+face and barycentric coordinates give a domain point, refined into the
+closest point `u_i` on the analytic surface by a few safeguarded
+Gauss-Newton steps on the chart coordinates (in the sweeps of trial steps,
+from the point's previous foot point instead; the mesh is then only searched
+for points closer than the foot point found, and projected from where it has
+one more than a mesh spacing away); the model and its Jacobian `L(u_i)` are evaluated
+there analytically, and the data force is
+`f_i = w_i n_i n_i^T (p_i - x(u_i))` (stiffness 1, `n_i` the model
+normal at `u_i`): the paper's force `p_i - x(u_i)` (eq. 8) projected on the
+normal. Where `u_i` is the exact closest point the two are equal; the
+projection removes the tangential error of locating `u_i` on a tessellation,
+which would otherwise pin model points to data points tangentially and slow
+the fit down like point-to-point ICP;
+(3) the integrator moves `q` with these correspondences (`u_i`, `n_i`,
+`w_i`) fixed; a step is only accepted if it lowers the energy
+`E = (1/2) sum_i w_i (n_i . (p_i - x(u_i)))^2` at these correspondences and
+does not increase the true energy (see step()).
+
+Phases (run()): optionally rigid-only first (parameter scheduling), then all
+parameters on a fixed random subset of `subset_size` points (the iterations
+far from the rest state do not need every point), then all parameters on all
+points until steady state: the relative energy decrease of a step is below
+`energy_tolerance` and the scaled force below `force_tolerance` for
+`steady_iterations` consecutive steps.
+
+\tparam Model a model of the concept `DeformableModel`: Deformable_model (one
+  primitive) or Deformable_blended_model (a blended shape of fixed structure).
+*/
+template <class Model>
+class Blended_shape_fitter
+{
+public:
+  typedef typename Model::Geom_traits Geom_traits;  ///< the kernel
+  typedef typename Geom_traits::Point_3 Point_3;    ///< the point type
+  typedef typename Geom_traits::Vector_3 Vector_3;  ///< the vector type
+  typedef Chart_mesh<Geom_traits> Chart_mesh_type;  ///< the tessellation of one chart
+
+  /// A fitter of `initial_model` to `points` (copied, as `double`), with the
+  /// chart meshes of the model at `settings.mesh_resolution` and their Closest_point_locator.
+  /// \throws Input_error if the points are unusable (see check_points()).
+  /// \throws std::invalid_argument on invalid settings.
+  template <class PointRange, class PointMap = CGAL::Identity_property_map<Point_3>>
+  Blended_shape_fitter(const PointRange& points, const Model& initial_model,
+                       const Fitting_settings& settings = Fitting_settings(),
+                       PointMap point_map = PointMap())
+    : m_model(initial_model), m_settings(settings)
+  {
+    check_points(points, point_map);
+    if(settings.mesh_resolution < 2 || settings.maximum_iterations == 0 || settings.steady_iterations == 0 ||
+       !(settings.energy_tolerance >= 0.) || !(settings.force_tolerance >= 0.) ||
+       !(settings.maximum_size_factor > 0.) || !(settings.placement_stiffness >= 0.) ||
+       !std::isfinite(settings.placement_stiffness) || settings.projection_iterations < 1 ||
+       !(settings.maximum_running_time > 0.))
+      throw std::invalid_argument("Blended_shape_fitter: invalid settings (mesh_resolution >= 2, "
+                                  "maximum_iterations >= 1, steady_iterations >= 1, projection_iterations >= 1, "
+                                  "tolerances >= 0, maximum_size_factor > 0, a finite placement_stiffness >= 0 and "
+                                  "maximum_running_time > 0 are required)");
+    CGAL::Bbox_3 box;
+    for(const auto& item : points)
+    {
+      const Point_3& p = get(point_map, item);
+      m_points.emplace_back(CGAL::to_double(p.x()), CGAL::to_double(p.y()), CGAL::to_double(p.z()));
+      box += p.bbox();
+    }
+    m_diagonal = std::sqrt(CGAL::square(box.xmax() - box.xmin()) + CGAL::square(box.ymax() - box.ymin()) +
+                           CGAL::square(box.zmax() - box.zmin()));
+    Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
+    for(const Eigen::Vector3d& p : m_points) centroid += p;
+    centroid /= double(m_points.size());
+    for(const Eigen::Vector3d& p : m_points) m_diameter = (std::max)(m_diameter, 2. * (p - centroid).norm());
+    m_charts.reserve(m_model.number_of_charts()); // the locator keeps pointers to them
+    for(std::size_t c = 0; c < m_model.number_of_charts(); ++c)
+      m_charts.emplace_back(c, m_model.chart_domain(c), settings.mesh_resolution);
+    position_meshes(m_model);
+    m_locator = std::make_unique<Closest_point_locator<Geom_traits>>(m_charts);
+    m_locator->set_face_mask(&m_kept_faces);
+    m_tree_outdated = true;
+    choose_subset();
+    m_active_parameters.assign(m_model.number_of_parameters(), true);
+    m_rest = m_model.parameters();
+  }
+
+  /// The current model: that of the last accepted step.
+  const Model& model() const { return m_model; }
+  /// The settings given to the constructor.
+  const Fitting_settings& settings() const { return m_settings; }
+  /// The number of input points.
+  std::size_t number_of_points() const { return m_points.size(); }
+  /// The diagonal of the bounding box of the points (the length scale of the fit).
+  double bounding_box_diagonal() const { return m_diagonal; }
+  /// The chart meshes, positioned by the current model.
+  const std::vector<Chart_mesh_type>& chart_meshes() const { return m_charts; }
+
+  /// Replaces the model (same kind of parameters and charts, e.g. after a
+  /// user edit); the next step recomputes all correspondences.
+  void set_model(const Model& model)
+  {
+    if(model.number_of_parameters() != m_model.number_of_parameters() ||
+       model.number_of_charts() != m_model.number_of_charts())
+      throw std::invalid_argument("Blended_shape_fitter::set_model: the model structure differs");
+    m_model = model;
+    m_rest = m_model.parameters(); // the springs hold the placements to where they are now
+    m_spring.clear();
+    refresh();
+  }
+
+  /// Restricts the next steps to all points (`true`) or to the subset.
+  void use_all_points(bool all) { m_use_all = all; }
+  /// Lets only the pose (translation and rotation) move (`true`) or every parameter.
+  void move_pose_only(bool pose_only)
+  {
+    for(std::size_t i = 0; i < m_active_parameters.size(); ++i)
+      m_active_parameters[i] = !pose_only || m_model.is_pose_parameter(i);
+  }
+
+  /*!
+  One iteration. With the correspondences of the current model (closest
+  points, normals and robust weights, kept from the previous step), the
+  integrator proposes parameters (clamped to the bounds, the shape lengths
+  also to `maximum_size_factor` times the bounding-box diagonal); a proposal is
+  accepted only if it lowers the energy at these fixed correspondences (by
+  more than `energy_tolerance`, relatively: a smaller decrease means a rest
+  state, and the model stays put) and does not increase the true energy (with
+  the closest points of the proposed model, which the next step then reuses,
+  so an accepted step costs one closest-point sweep). Otherwise the damping
+  grows (Gauss-Newton, up to 8 tries; not at a rest state, which would only
+  leave the next phase with needlessly damped first steps) or the time step
+  halves (explicit, up to 12 tries) and it tries again; at most two trials of
+  a step get a closest-point sweep.
+  */
+  Step_report step()
+  {
+    const std::vector<std::size_t>& active = m_use_all ? m_all : m_subset;
+    Step_report report;
+    report.points_used = active.size();
+    if(!m_correspondences_valid || m_correspondences_all != m_use_all)
+      set_correspondences(attach(m_model, active), m_use_all);
+    const Correspondences& corr = m_correspondences;
+    const double c = corr.scale;
+    const Eigen::VectorXd q = m_model.parameters();
+
+    // The linear system of the dynamics at these correspondences (eq. 7, 8):
+    // per point the force direction in parameter space L^T n (point-to-plane).
+    const std::size_t n = m_model.number_of_parameters();
+    Eigen::MatrixXd H = Eigen::MatrixXd::Zero(Eigen::Index(n), Eigen::Index(n));
+    Eigen::VectorXd g = Eigen::VectorXd::Zero(Eigen::Index(n));
+    Eigen::VectorXd Jn(static_cast<Eigen::Index>(n));
+    std::vector<double> w(active.size());
+    std::vector<Eigen::Index> nonzero;
+    typename Model::Jacobian L;
+    double E0 = 0.;
+    for(std::size_t k = 0; k < active.size(); ++k)
+    {
+      const Point_3 x = m_model.point_and_jacobian(corr.u[k], L);
+      const double r = corr.normal[k].dot(m_points[active[k]] - Eigen::Vector3d(x.x(), x.y(), x.z()));
+      w[k] = weight(corr.distance[k], c);
+      Jn.noalias() = L.transpose() * corr.normal[k];
+      g.noalias() += (w[k] * r) * Jn;
+      E0 += 0.5 * w[k] * r * r;
+      // A point of a blended model depends on the few components and blends
+      // that reach it: the outer product only over its nonzero entries.
+      nonzero.clear();
+      for(Eigen::Index i = 0; i < Jn.size(); ++i)
+        if(Jn[i] != 0.)
+          nonzero.push_back(i);
+      if(2 * nonzero.size() > n)
+        H.template selfadjointView<Eigen::Lower>().rankUpdate(Jn, w[k]);
+      else
+        for(std::size_t a = 0; a < nonzero.size(); ++a)
+        {
+          const double wa = w[k] * Jn[nonzero[a]];
+          for(std::size_t b = 0; b <= a; ++b)
+            H(nonzero[a], nonzero[b]) += wa * Jn[nonzero[b]];
+        }
+    }
+    H.template triangularView<Eigen::Upper>() = H.transpose();
+    // The placement springs (sec. 3.5): E_s = (1/2) sum_i N k_i (q_i - rest_i)^2.
+    if(m_spring.empty())
+      set_springs(H, active.size());
+    const double points_used = double(active.size());
+    for(std::size_t i = 0; i < n; ++i)
+      if(m_spring[i] > 0.)
+      {
+        const Eigen::Index ii = Eigen::Index(i);
+        H(ii, ii) += points_used * m_spring[i];
+        g[ii] -= points_used * m_spring[i] * (q[ii] - m_rest[ii]);
+      }
+    const double spring0 = spring_energy(q, active.size());
+    E0 += spring0;
+    report.energy_before = true_energy(corr.distance, c) + spring0;
+    // Parameters held at a bound by a force pushing past it are frozen for
+    // this step (an active set): a step computed without the bound and then
+    // clamped points the wrong way and only makes the damping grow.
+    std::vector<bool> free_parameter = m_active_parameters;
+    for(std::size_t i = 0; i < n; ++i)
+    {
+      const Eigen::Index ii = Eigen::Index(i);
+      if((g[ii] < 0. && q[ii] <= lower_bound(i)) || (g[ii] > 0. && q[ii] >= upper_bound(i)))
+        free_parameter[i] = false;
+    }
+    for(std::size_t i = 0; i < n; ++i)
+      if(!free_parameter[i])
+      {
+        H.row(Eigen::Index(i)).setZero();
+        H.col(Eigen::Index(i)).setZero();
+        H(Eigen::Index(i), Eigen::Index(i)) = 1.;
+        g[Eigen::Index(i)] = 0.;
+      }
+    report.fixed_energy_before = report.fixed_energy_after = E0;
+    report.energy_after = report.energy_before;
+
+    // Scaled force: cosine between the residual and each free parameter direction.
+    const double floor = CGAL::square(1e-12 * m_diameter) * double(active.size());
+    for(std::size_t i = 0; i < n; ++i)
+    {
+      const Eigen::Index ii = Eigen::Index(i);
+      if(!free_parameter[i])
+        continue;
+      const double den = std::sqrt(2. * (E0 + floor) * H(ii, ii));
+      if(den > 0.)
+        report.scaled_force = (std::max)(report.scaled_force, std::abs(g[ii]) / den);
+    }
+
+    bool negligible = false;
+    int sweeps = 0; // closest-point sweeps spent on trials in this step
+    auto try_step = [&](const Eigen::VectorXd& delta) {
+      Eigen::VectorXd q1 = q + delta;
+      for(std::size_t i = 0; i < n; ++i)
+        q1[Eigen::Index(i)] = (std::min)((std::max)(q1[Eigen::Index(i)], lower_bound(i)), upper_bound(i));
+      Model trial = m_model;
+      try
+      {
+        trial.set_parameters(q1);
+      }
+      catch(const std::invalid_argument&)
+      {
+        return false; // e.g. a blending region leaving its chart: a step too far
+      }
+      const double spring1 = spring_energy(q1, active.size());
+      double E1 = spring1;
+      // the points (the same as point()) with their chart Jacobians: the
+      // closest-point sweep starts from these chart points
+      // (where a blended model's regions moved, a chart point may have left
+      // the surface or have another canonical point: then only the point)
+      m_start_points.resize(active.size());
+      m_start_jacobians.resize(active.size());
+      m_start_valid.assign(active.size(), false);
+      for(std::size_t k = 0; k < active.size(); ++k)
+      {
+        Chart_point cu;
+        const Chart_point& u = corr.u[k];
+        m_start_valid[k] = trial.canonical_surface_point(u, cu) && cu.chart == u.chart && cu.x == u.x && cu.y == u.y;
+        const Point_3 x = m_start_valid[k] ? trial.point_and_chart_jacobian(u, m_start_jacobians[k]) : trial.point(u);
+        m_start_points[k] = Eigen::Vector3d(x.x(), x.y(), x.z());
+        E1 += 0.5 * w[k] * CGAL::square(corr.normal[k].dot(m_points[active[k]] - m_start_points[k]));
+      }
+      if(!(E1 <= E0))
+        return false;
+      if(E0 - E1 <= m_settings.energy_tolerance * E0)
+      {
+        negligible = true; // a rest state: not worth a sweep, and the model stays put
+        return false;
+      }
+      if(++sweeps > 2)
+        return false;
+      Correspondences moved = attach(trial, active, &corr, true);
+      const double F1 = true_energy(moved.distance, c) + spring1;
+      if(!(F1 <= report.energy_before))
+        return false;
+      m_model = trial;
+      set_correspondences(std::move(moved), m_use_all);
+      report.energy_after = F1;
+      report.fixed_energy_after = E1;
+      report.accepted = true;
+      return true;
+    };
+    if(m_settings.integrator == Integrator::Gauss_newton)
+    {
+      const Eigen::VectorXd diag = H.diagonal();
+      const double ridge = 1e-12 * (diag.sum() / double(n) + 1e-300);
+      for(int attempt = 0; attempt < 8 && !report.accepted && !negligible && sweeps <= 2; ++attempt)
+      {
+        Eigen::MatrixXd A = H;
+        A.diagonal() += m_lambda * diag + Eigen::VectorXd::Constant(Eigen::Index(n), ridge);
+        const Eigen::VectorXd delta = A.ldlt().solve(g);
+        if(delta.allFinite() && try_step(delta))
+          m_lambda = (std::max)(m_lambda / 3., 1e-9);
+        else if(!negligible) // at a rest state the damping is not to blame: it would
+          m_lambda = (std::min)(m_lambda * 8., 1e12); // only slow down the next phase's first steps
+      }
+    }
+    else
+    {
+      // dt = 1 / lambda_max(J^T J): stable for the linearized dynamics q' = f_q;
+      // times a reduction that persists between steps (halved on failure,
+      // grown back on success) where the nonlinearity needs shorter steps.
+      const double lmax =
+        Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(H, Eigen::EigenvaluesOnly).eigenvalues().maxCoeff();
+      const double dt = (lmax > 0.) ? 1. / lmax : 0.;
+      for(int attempt = 0; attempt < 12 && !report.accepted && !negligible && sweeps <= 2 && dt > 0.; ++attempt)
+      {
+        if(try_step(m_dt_scale * dt * g))
+          m_dt_scale = (std::min)(1., 1.5 * m_dt_scale);
+        else
+          m_dt_scale *= 0.5;
+      }
+    }
+    report.stalled = !report.accepted &&
+                     (negligible || m_lambda >= 1e10 || m_dt_scale <= 1e-8 || !(report.energy_before > 0.));
+    if(!report.accepted)
+      position_meshes(m_model); // a rejected trial left the meshes where it was
+    return report;
+  }
+
+  /*!
+  Iterates through the phases until steady state on all points, the
+  iteration limit, the time limit, or until `callback` (called before each
+  iteration with the fraction of the iteration budget spent) returns false.
+  The model is always a valid model of the last accepted step.
+  With `last_phase` = `Fitting_phase::Subset` (or `Rigid`), it stops when that
+  phase comes to rest (used to compare several starts cheaply).
+  */
+  template <class Visitor = Default_fitting_visitor>
+  Fitting_status run(Visitor&& visitor = Visitor(),
+                     const std::function<bool(double)>& callback = std::function<bool(double)>(),
+                     Fitting_phase last_phase = Fitting_phase::All_points)
+  {
+    const auto start = std::chrono::steady_clock::now();
+    Fitting_status status;
+    const bool subset = m_subset.size() < m_all.size();
+    Fitting_phase phase = m_settings.rigid_first ? Fitting_phase::Rigid
+                                                 : (subset ? Fitting_phase::Subset : Fitting_phase::All_points);
+    auto enter = [&](Fitting_phase p) {
+      phase = p;
+      move_pose_only(p == Fitting_phase::Rigid);
+      use_all_points(p == Fitting_phase::All_points || (p == Fitting_phase::Rigid && !subset));
+      // A phase starts undamped: the damping that ended the last one (grown by
+      // the failed steps of its rest state) says nothing about the new energy,
+      // and would only slow the new phase's first steps down.
+      m_lambda = (std::min)(m_lambda, initial_damping);
+      m_dt_scale = 1.;
+      visitor.on_phase(p, status.iterations);
+    };
+    enter(phase);
+    std::size_t steady = 0, in_phase = 0;
+    bool rechecked = false; // see recheck_correspondences(): once, at the first rest state on all points
+    while(status.iterations < m_settings.maximum_iterations)
+    {
+      if(callback && !callback(double(status.iterations) / double(m_settings.maximum_iterations)))
+      {
+        status.aborted = true;
+        break;
+      }
+      if(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() >
+         m_settings.maximum_running_time)
+      {
+        status.timed_out = true;
+        break;
+      }
+      const Step_report r = step();
+      ++status.iterations;
+      ++in_phase;
+      visitor.on_iteration(status.iterations, r.energy_after, r.points_used);
+      const double decrease = (r.energy_before - r.energy_after) / (std::max)(r.energy_before, 1e-300);
+      const bool at_rest = r.stalled || (r.accepted && decrease <= m_settings.energy_tolerance &&
+                                         r.scaled_force <= m_settings.force_tolerance);
+      steady = at_rest ? steady + 1 : 0;
+      const bool phase_done = steady >= m_settings.steady_iterations ||
+                              (phase == Fitting_phase::Rigid && in_phase >= m_settings.rigid_iterations);
+      if(!phase_done)
+        continue;
+      steady = 0;
+      in_phase = 0;
+      if(phase != Fitting_phase::All_points && phase == last_phase)
+        break;
+      if(phase == Fitting_phase::Rigid)
+        enter(subset ? Fitting_phase::Subset : Fitting_phase::All_points);
+      else if(phase == Fitting_phase::Subset)
+        enter(Fitting_phase::All_points);
+      else if(rechecked || !recheck_correspondences())
+      {
+        status.converged = true;
+        visitor.on_phase(Fitting_phase::Steady_state, status.iterations);
+        break;
+      }
+      else
+        rechecked = true;
+    }
+    move_pose_only(false);
+    use_all_points(true);
+    status.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    return status;
+  }
+
+  /// The data forces of every point on the current model (eq. 8).
+  std::vector<Data_force<Geom_traits>> forces()
+  {
+    const Correspondences& corr = correspondences_of_all_points();
+    std::vector<Data_force<Geom_traits>> result;
+    result.reserve(m_all.size());
+    for(std::size_t k = 0; k < m_all.size(); ++k)
+    {
+      const Point_3 x = m_model.point(corr.u[k]);
+      const double w = weight(corr.distance[k], corr.scale);
+      const Eigen::Vector3d f =
+        (w * corr.normal[k].dot(m_points[k] - Eigen::Vector3d(x.x(), x.y(), x.z()))) * corr.normal[k];
+      result.push_back({k, corr.u[k], x, Vector_3(f[0], f[1], f[2]), w});
+    }
+    return result;
+  }
+
+  /// The mean squared distance from the points in use (all, or the subset)
+  /// to their closest model points: comparable between fits of the same points.
+  double mean_squared_distance(bool all_points)
+  {
+    // those of the last step, if they are of the subset (as after a run() that stopped after the subset phase)
+    const Correspondences& corr = all_points ? correspondences_of_all_points()
+                                             : (m_correspondences_valid && !m_correspondences_all)
+                                                 ? m_correspondences
+                                                 : (m_scratch = attach(m_model, m_subset));
+    double sum = 0.;
+    for(double d : corr.distance)
+      sum += d * d;
+    return corr.distance.empty() ? 0. : sum / double(corr.distance.size());
+  }
+
+  /// The energy of the placement springs (see Fitting_settings::placement_stiffness)
+  /// of `model` for `points_used` points (0 before the first step, which sets the springs).
+  double placement_spring_energy(const Model& model, std::size_t points_used) const
+  {
+    return spring_energy(model.parameters(), points_used);
+  }
+
+  /// The input points, as read (in their original order).
+  const std::vector<Eigen::Vector3d>& points() const { return m_points; }
+
+private:
+  // The model's bounds, with shape lengths also capped by the data's size.
+  double lower_bound(std::size_t i) const { return m_model.parameter_lower_bound(i); }
+  double upper_bound(std::size_t i) const
+  {
+    const double b = m_model.parameter_upper_bound(i);
+    if(m_model.is_pose_parameter(i) || m_model.parameter_kind(i) != Parameter_kind::Length)
+      return b;
+    return (std::min)(b, m_settings.maximum_size_factor * m_diameter);
+  }
+
+  // Closest points of the points `active` on `model`: chart points, normals
+  // and distances, with the robust scale of these distances.
+  struct Correspondences
+  {
+    std::vector<Chart_point> u;
+    std::vector<Eigen::Vector3d> normal;
+    std::vector<double> distance;
+    double scale = HUGE_VAL; // Cauchy scale c (infinite: no robust weighting)
+  };
+
+  // Positions the chart meshes; their AABB tree is rebuilt when next searched
+  // (a rejected trial's meshes are put back without a rebuild that nobody uses).
+  // The faces searched are those with a corner on the surface (sec. 3.3:
+  // the faces wholly in a discarded part of a blended shape's domain are
+  // omitted; for a single primitive, all).
+  void position_meshes(const Model& model)
+  {
+    m_kept_faces.resize(m_charts.size());
+    for(std::size_t i = 0; i < m_charts.size(); ++i)
+    {
+      Chart_mesh_type& cm = m_charts[i];
+      cm.set_positions([&](const Chart_point& u) { return model.point(u); });
+      const auto& mesh = cm.mesh();
+      std::vector<bool> on(mesh.number_of_vertices());
+      for(auto v : mesh.vertices())
+        on[std::size_t(v)] = model.is_on_surface(cm.chart_point(v));
+      m_kept_faces[i].assign(mesh.number_of_faces(), false);
+      for(auto f : mesh.faces())
+        for(auto v : cm.face_vertices(f))
+          if(on[std::size_t(v)])
+            m_kept_faces[i][std::size_t(f)] = true;
+    }
+    m_tree_outdated = true;
+  }
+
+  // A start for the projection of a located mesh point: its chart point, or,
+  // on a face that straddles a cut, the face's corner on the surface with the
+  // largest barycentric weight.
+  Chart_point projection_start(const Located_point<Geom_traits>& loc, const Model& model) const
+  {
+    if(model.is_on_surface(loc.chart_point))
+      return loc.chart_point;
+    const Chart_mesh_type& cm = m_charts[loc.chart_mesh];
+    const auto v = cm.face_vertices(loc.face);
+    int best = -1;
+    for(int k = 0; k < 3; ++k)
+      if(model.is_on_surface(cm.chart_point(v[std::size_t(k)])) &&
+         (best < 0 || loc.barycentric[std::size_t(k)] > loc.barycentric[std::size_t(best)]))
+        best = k;
+    CGAL_assertion(best >= 0); // the kept faces have a corner on the surface
+    return cm.chart_point(v[std::size_t(best < 0 ? 0 : best)]);
+  }
+
+  // The locator over the current mesh positions.
+  const Closest_point_locator<Geom_traits>& locator()
+  {
+    if(m_tree_outdated)
+    {
+      m_locator->rebuild();
+      m_tree_outdated = false;
+    }
+    return *m_locator;
+  }
+
+  void choose_subset()
+  {
+    m_all.resize(m_points.size());
+    std::iota(m_all.begin(), m_all.end(), std::size_t(0));
+    if(m_settings.subset_size == 0 || m_settings.subset_size >= m_points.size())
+    {
+      m_subset = m_all;
+      return;
+    }
+    // A deterministic partial Fisher-Yates shuffle (std::shuffle's algorithm is
+    // implementation-defined; this keeps results identical across libraries).
+    std::vector<std::size_t> idx = m_all;
+    std::mt19937_64 rng(m_settings.random_seed);
+    for(std::size_t i = 0; i < m_settings.subset_size; ++i)
+    {
+      const std::size_t j = i + std::size_t(rng() % (idx.size() - i));
+      std::swap(idx[i], idx[j]);
+    }
+    m_subset.assign(idx.begin(), idx.begin() + std::ptrdiff_t(m_settings.subset_size));
+    std::sort(m_subset.begin(), m_subset.end());
+  }
+
+  void refresh()
+  {
+    position_meshes(m_model);
+    m_correspondences_valid = false;
+  }
+
+  void set_correspondences(Correspondences&& c, bool all_points)
+  {
+    m_correspondences = std::move(c);
+    m_correspondences_all = all_points;
+    m_correspondences_valid = true;
+  }
+
+  // At a rest state: the foot points followed from step to step are local
+  // closest points; where the data point is near the medial axis (inside an
+  // edge of the model, say) another sheet of the surface may have become
+  // closer without the bounded search seeing it past the tessellation's chord
+  // error. Every point's tessellation closest point is projected too; true
+  // when that lowers the energy enough for the fit to go on (the rest state
+  // was one of the followed foot points, not of the closest ones).
+  bool recheck_correspondences()
+  {
+    const Correspondences& corr = correspondences_of_all_points();
+    const double before = true_energy(corr.distance, corr.scale);
+    Correspondences fresh = attach(m_model, m_all, &corr, false, true);
+    const double after = true_energy(fresh.distance, corr.scale);
+    set_correspondences(std::move(fresh), true);
+    return after < before * (1. - m_settings.energy_tolerance);
+  }
+
+  const Correspondences& correspondences_of_all_points()
+  {
+    if(!m_correspondences_valid || !m_correspondences_all)
+      set_correspondences(attach(m_model, m_all), true);
+    return m_correspondences;
+  }
+
+  // With `previous` (the correspondences of the same points on the model
+  // before a small step), each projection starts from the previous foot
+  // point, and the tessellation is only searched for points closer than the
+  // foot point found (a search bounded by that distance, hence cheap); where
+  // it has one, the projection from there is made too and the closer result
+  // wins: the true energy of consecutive models is then measured
+  // consistently, and a nearby foot point is not lost to a tessellation
+  // artifact.
+  // With `evaluated`, m_start_points and m_start_jacobians hold the model's
+  // points and chart Jacobians at the previous chart points.
+  // With `search_everywhere` (and `previous`), the tessellation's closest
+  // point is projected too, whatever its distance, and the closer result wins.
+  Correspondences attach(const Model& model, const std::vector<std::size_t>& active,
+                         const Correspondences* previous = nullptr, bool evaluated = false,
+                         bool search_everywhere = false)
+  {
+    position_meshes(model);
+    Correspondences c;
+    c.u.resize(active.size());
+    c.normal.resize(active.size());
+    c.distance.resize(active.size());
+    const int iterations = m_settings.projection_iterations;
+    // Distances to 1e-12 relatively (energies far more precisely than the
+    // energy tolerance can see); the foot points themselves to ~1e-6 of the distance.
+    const double tolerance = 1e-12;
+    const double spacing2 = 1. / CGAL::square(double(m_settings.mesh_resolution)); // squared chart distance
+    Located_point<Geom_traits> loc;
+    for(std::size_t k = 0; k < active.size(); ++k)
+    {
+      const Eigen::Vector3d& p = m_points[active[k]];
+      const Point_3 query(p[0], p[1], p[2]);
+      internal::Foot_point foot;
+      if(previous != nullptr && model.is_on_surface(previous->u[k]))
+      {
+        foot = (evaluated && m_start_valid[k])
+                 ? internal::refine_foot_point(model, p, previous->u[k], iterations, tolerance, &m_start_points[k],
+                                               &m_start_jacobians[k])
+                 : internal::refine_foot_point(model, p, previous->u[k], iterations, tolerance);
+        // A closer tessellation point within a mesh spacing of the foot point
+        // (in the same chart) leads back to the same foot point: only one
+        // farther away can lead to another one.
+        if(search_everywhere)
+          loc = locator().locate(query);
+        if(search_everywhere ||
+           (locator().locate_closer_than(query, Point_3(foot.x[0], foot.x[1], foot.x[2]), loc) &&
+            !(loc.chart_point.chart == foot.u.chart &&
+              CGAL::square(loc.chart_point.x - foot.u.x) + CGAL::square(loc.chart_point.y - foot.u.y) <= spacing2)))
+        {
+          const internal::Foot_point w =
+            internal::refine_foot_point(model, p, projection_start(loc, model), iterations, tolerance);
+          if(!(foot.squared_distance < w.squared_distance)) // ties go to the tessellation's start
+            foot = w;
+        }
+      }
+      else // no previous foot point, or it left the surface of a blended model
+        foot = internal::refine_foot_point(model, p, projection_start(locator().locate(query), model), iterations,
+                                           tolerance);
+      c.u[k] = foot.u;
+      const Vector_3 nv = model.normal(foot.u);
+      c.normal[k] = Eigen::Vector3d(nv.x(), nv.y(), nv.z());
+      c.distance[k] = std::sqrt(foot.squared_distance);
+    }
+    if(m_settings.robust_weighting == Robust_weighting::Cauchy && !active.empty())
+    {
+      std::vector<double> sorted = c.distance;
+      std::nth_element(sorted.begin(), sorted.begin() + std::ptrdiff_t(sorted.size() / 2), sorted.end());
+      c.scale = (std::max)(2.385 * 1.4826 * sorted[sorted.size() / 2], 1e-9 * m_diameter);
+    }
+    return c;
+  }
+
+  // The springs' stiffness per point and parameter: for each run of
+  // placement parameters of one kind (a translation, a quaternion), the
+  // settings' fraction of the mean of the data's stiffness H_ii over the run.
+  void set_springs(const Eigen::MatrixXd& H, std::size_t points_used)
+  {
+    const std::size_t n = m_model.number_of_parameters();
+    m_spring.assign(n, 0.);
+    if(!(m_settings.placement_stiffness > 0.) || points_used == 0)
+      return;
+    for(std::size_t i = 0; i < n;)
+    {
+      if(!m_model.is_placement_parameter(i))
+      {
+        ++i;
+        continue;
+      }
+      std::size_t j = i;
+      double sum = 0.;
+      while(j < n && m_model.is_placement_parameter(j) && m_model.parameter_kind(j) == m_model.parameter_kind(i))
+        sum += H(Eigen::Index(j), Eigen::Index(j)), ++j;
+      const double k = m_settings.placement_stiffness * sum / double(j - i) / double(points_used);
+      for(std::size_t l = i; l < j; ++l)
+        m_spring[l] = k;
+      i = j;
+    }
+  }
+
+  double spring_energy(const Eigen::VectorXd& q, std::size_t points_used) const
+  {
+    double e = 0.;
+    for(std::size_t i = 0; i < m_spring.size(); ++i)
+      e += 0.5 * double(points_used) * m_spring[i] * CGAL::square(q[Eigen::Index(i)] - m_rest[Eigen::Index(i)]);
+    return e;
+  }
+
+  // Cauchy weights and loss for scale c; c = infinity gives weight 1 and d^2.
+  static double weight(double d, double c) { return std::isinf(c) ? 1. : 1. / (1. + CGAL::square(d / c)); }
+  static double loss(double d, double c)
+  {
+    return std::isinf(c) ? d * d : c * c * std::log1p(CGAL::square(d / c));
+  }
+  static double true_energy(const std::vector<double>& distance, double c)
+  {
+    double e = 0.;
+    for(double d : distance)
+      e += 0.5 * loss(d, c);
+    return e;
+  }
+
+  Model m_model;
+  Fitting_settings m_settings;
+  std::vector<Eigen::Vector3d> m_points;
+  double m_diagonal = 0.;  // of the bounding box: for the metrics
+  double m_diameter = 0.;  // about the centroid: the rotation-invariant length scale
+  std::vector<Chart_mesh_type> m_charts;
+  std::vector<std::vector<bool>> m_kept_faces; // per chart mesh and face: searched (see position_meshes())
+  std::unique_ptr<Closest_point_locator<Geom_traits>> m_locator;
+  bool m_tree_outdated = false; // the meshes moved since the locator's tree was built
+  std::vector<Eigen::Vector3d> m_start_points;                     // see attach()
+  std::vector<typename Model::Chart_jacobian> m_start_jacobians;  // see attach()
+  std::vector<bool> m_start_valid;                                 // see attach()
+  std::vector<std::size_t> m_all, m_subset;
+  bool m_use_all = true;
+  std::vector<bool> m_active_parameters;
+  Correspondences m_correspondences;     // of m_model, on all points or the subset
+  Correspondences m_scratch;             // those of mean_squared_distance() on the subset
+  bool m_correspondences_valid = false;
+  bool m_correspondences_all = false;
+  Eigen::VectorXd m_rest;             // the parameters the placement springs pull towards
+  std::vector<double> m_spring;       // per parameter: spring stiffness per point (set at the first step)
+  static constexpr double initial_damping = 1e-3;
+  double m_lambda = initial_damping; // Gauss-Newton damping
+  double m_dt_scale = 1.;    // explicit integrator: reduction of the stable step
+};
+
+} // namespace Blended_shapes
+} // namespace CGAL
+
+#endif // CGAL_BLENDED_SHAPE_FITTING_BLENDED_SHAPE_FITTER_H

@@ -1,0 +1,391 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
+#ifndef CGAL_BLENDED_SHAPE_FITTING_CLOSEST_POINT_LOCATOR_H
+#define CGAL_BLENDED_SHAPE_FITTING_CLOSEST_POINT_LOCATOR_H
+
+#include <CGAL/Blended_shape/Primitives/Chart_mesh.h>
+
+#include <CGAL/AABB_face_graph_triangle_primitive.h>
+#include <CGAL/AABB_traits.h>
+#include <CGAL/AABB_tree.h>
+
+#include <Eigen/Dense>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <stdexcept>
+#include <vector>
+
+namespace CGAL {
+namespace Blended_shapes {
+
+/// \ingroup PkgBlendedShapeFitting
+/// Where a query point's closest point on the model mesh lies.
+template <class GeomTraits>
+struct Located_point
+{
+  Chart_point chart_point;                  ///< the domain point of the closest mesh point
+  typename GeomTraits::Point_3 mesh_point;  ///< the closest point on the (piecewise linear) mesh
+  std::size_t chart_mesh = 0;               ///< index of the chart mesh holding it
+  typename Chart_mesh<GeomTraits>::face_descriptor face; ///< the face of that chart mesh holding it
+  std::array<double, 3> barycentric;        ///< in the vertex order of Chart_mesh::face_vertices()
+};
+
+namespace internal {
+
+/// Barycentric coordinates of `q` (a point of the triangle's plane) in (a, b, c).
+template <class Point_3>
+std::array<double, 3> barycentric_coordinates(const Point_3& a, const Point_3& b, const Point_3& c, const Point_3& q)
+{
+  const auto v0 = b - a, v1 = c - a, v2 = q - a;
+  const double d00 = CGAL::to_double(v0 * v0), d01 = CGAL::to_double(v0 * v1), d11 = CGAL::to_double(v1 * v1);
+  const double d20 = CGAL::to_double(v2 * v0), d21 = CGAL::to_double(v2 * v1);
+  const double den = d00 * d11 - d01 * d01;
+  if(!(den > 0.)) // degenerate triangle: take its first vertex
+    return {{1., 0., 0.}};
+  double l1 = (d11 * d20 - d01 * d21) / den, l2 = (d00 * d21 - d01 * d20) / den;
+  l1 = (std::min)((std::max)(l1, 0.), 1.);
+  l2 = (std::min)((std::max)(l2, 0.), 1. - l1);
+  return {{1. - l1 - l2, l1, l2}};
+}
+
+} // namespace internal
+
+/*!
+\ingroup PkgBlendedShapeFitting
+
+Closest points on a model made of chart meshes (sec. 3.3: the union of the
+per-chart meshes, spatially overlapping near seams), with one CGAL AABB tree
+over the faces of all of them. A located point carries its chart, face and
+barycentric coordinates, hence its domain point, at which the model is then
+evaluated analytically (the mesh is only the search structure).
+
+The chart meshes are held by reference: call rebuild() after their
+positions changed. With a face mask (set_face_mask()), only the faces it
+keeps are searched: the per-component pieces of a blended shape (sec. 3.3)
+omit the faces wholly in a discarded part of the domain.
+*/
+template <class GeomTraits>
+class Closest_point_locator
+{
+public:
+  typedef Chart_mesh<GeomTraits> Chart_mesh_type;  ///< one chart's tessellation
+  typedef typename Chart_mesh_type::Mesh Mesh;      ///< its mesh type
+  typedef typename GeomTraits::Point_3 Point_3;     ///< the point type
+  /// The AABB primitive: a face of a chart mesh.
+  typedef CGAL::AABB_face_graph_triangle_primitive<Mesh, CGAL::Default, CGAL::Tag_false> Primitive;
+  typedef CGAL::AABB_traits<GeomTraits, Primitive> Traits; ///< the AABB traits
+  typedef CGAL::AABB_tree<Traits> Tree;                     ///< the AABB tree type
+
+  /// Builds the tree over the faces of all `charts`, which must outlive the locator.
+  explicit Closest_point_locator(const std::vector<Chart_mesh_type>& charts) : m_charts(&charts) { rebuild(); }
+
+  /// Searches only the faces `mask[i][f]` of chart mesh `i` says to keep
+  /// (indexed by face index), or every face if `mask` is null; `mask` must
+  /// outlive the locator. Takes effect at the next rebuild().
+  void set_face_mask(const std::vector<std::vector<bool>>* mask) { m_mask = mask; }
+
+  /// Rebuilds the tree (after the chart mesh positions, or the face mask, changed).
+  void rebuild()
+  {
+    m_tree.clear();
+    for(std::size_t i = 0; i < m_charts->size(); ++i)
+    {
+      const Chart_mesh_type& cm = (*m_charts)[i];
+      if(m_mask == nullptr)
+      {
+        m_tree.insert(faces(cm.mesh()).first, faces(cm.mesh()).second, cm.mesh());
+        continue;
+      }
+      std::vector<typename Chart_mesh_type::face_descriptor> kept;
+      for(auto f : faces(cm.mesh()))
+        if(is_kept(i, f))
+          kept.push_back(f);
+      m_tree.insert(kept.begin(), kept.end(), cm.mesh());
+    }
+    if(m_tree.empty())
+      throw std::invalid_argument("Closest_point_locator: no face to search (the face mask keeps none)");
+    m_tree.build();
+    m_any_primitive = m_tree.any_reference_point_and_id().second;
+  }
+
+  /// The closest point to `query` on the chart meshes, with its chart point.
+  Located_point<GeomTraits> locate(const Point_3& query) const
+  {
+    const auto hit = m_tree.closest_point_and_primitive(query);
+    return make_location(hit.second.second, hit.second.first, hit.first);
+  }
+
+  /// The closest point to `query` on the chart meshes if it is at least as
+  /// close as `bound` (any point, e.g. a foot point already found on the
+  /// analytic surface) and differs from it: then `true`, with it in `result`.
+  /// Otherwise `false` (and `result` is unchanged). The known distance bounds
+  /// the search, which makes it much cheaper than locate() when it is small.
+  bool locate_closer_than(const Point_3& query, const Point_3& bound, Located_point<GeomTraits>& result) const
+  {
+    const auto hit = m_tree.closest_point_and_primitive(
+      query, typename Tree::Point_and_primitive_id(bound, m_any_primitive));
+    if(hit.first == bound)
+      return false;
+    result = make_location(hit.second.second, hit.second.first, hit.first);
+    return true;
+  }
+
+  /// The same answer by brute force over every face (for tests).
+  Located_point<GeomTraits> locate_brute_force(const Point_3& query) const
+  {
+    double best = HUGE_VAL;
+    Located_point<GeomTraits> result;
+    for(std::size_t i = 0; i < m_charts->size(); ++i)
+      for(auto f : faces((*m_charts)[i].mesh()))
+      {
+        const Chart_mesh_type& cm = (*m_charts)[i];
+        if(!is_kept(i, f))
+          continue;
+        const auto v = cm.face_vertices(f);
+        const typename GeomTraits::Triangle_3 t(cm.mesh().point(v[0]), cm.mesh().point(v[1]), cm.mesh().point(v[2]));
+        const Point_3 c = GeomTraits().construct_projected_point_3_object()(t, query);
+        const double d = CGAL::to_double(CGAL::squared_distance(c, query));
+        if(d < best)
+        {
+          best = d;
+          result = make_location(&cm.mesh(), f, c);
+        }
+      }
+    return result;
+  }
+
+  /// The AABB tree (for further queries).
+  const Tree& tree() const { return m_tree; }
+
+private:
+  Located_point<GeomTraits> make_location(const Mesh* mesh, typename Chart_mesh_type::face_descriptor f,
+                                          const Point_3& p) const
+  {
+    Located_point<GeomTraits> loc;
+    loc.mesh_point = p;
+    loc.face = f;
+    for(std::size_t i = 0; i < m_charts->size(); ++i)
+      if(&(*m_charts)[i].mesh() == mesh)
+        loc.chart_mesh = i;
+    const Chart_mesh_type& cm = (*m_charts)[loc.chart_mesh];
+    const auto v = cm.face_vertices(f);
+    loc.barycentric = internal::barycentric_coordinates(cm.mesh().point(v[0]), cm.mesh().point(v[1]),
+                                                        cm.mesh().point(v[2]), p);
+    loc.chart_point = cm.chart_point(f, loc.barycentric);
+    return loc;
+  }
+
+  bool is_kept(std::size_t i, typename Chart_mesh_type::face_descriptor f) const
+  {
+    return m_mask == nullptr || (*m_mask)[i][std::size_t(f)];
+  }
+
+  const std::vector<Chart_mesh_type>* m_charts;
+  const std::vector<std::vector<bool>>* m_mask = nullptr;
+  Tree m_tree;
+  typename Primitive::Id m_any_primitive; // the id handed to bounded queries with their bound
+};
+
+namespace internal {
+
+/// A foot point: the chart point `u`, the model point `x(u)` and `|p - x(u)|^2`.
+struct Foot_point
+{
+  Chart_point u;
+  Eigen::Vector3d x;
+  double squared_distance;
+};
+
+/// refine_closest_point(), also returning the model point and the squared
+/// distance at the result (computed as `(p - model.point(u)).squaredNorm()` would be).
+/// With `relative_tolerance` > 0 it also stops when a Gauss-Newton step
+/// would lower the squared distance by at most that fraction of it (the
+/// predicted decrease `g . step`): where the distance matters and the exact
+/// foot point does not (the fitter's correspondences, whose distance is only
+/// off by the square of the remaining tangential error), this saves the
+/// tail of the iteration, which converges only linearly away from the
+/// surface (at the rate distance x curvature).
+/// With `start_point` and `start_jacobian`, these are the model's point and
+/// chart Jacobian at `start` (saving their evaluation).
+template <class Model>
+Foot_point refine_foot_point(const Model& model, const Eigen::Vector3d& p, Chart_point start, int max_iterations,
+                             double relative_tolerance = 0., const Eigen::Vector3d* start_point = nullptr,
+                             const typename Model::Chart_jacobian* start_jacobian = nullptr)
+{
+  typedef typename Model::Chart_jacobian Chart_jacobian;
+  auto eval = [&](const Chart_point& v, Chart_jacobian& D) {
+    const auto x = model.point_and_chart_jacobian(v, D);
+    return Eigen::Vector3d(x.x(), x.y(), x.z());
+  };
+  // From the chart in which the start is canonical: a start on the rim of
+  // its chart (a tessellation point near a chart seam) would otherwise be
+  // stuck there by steps that leave the chart.
+  Chart_point u;
+  if(!model.canonical_surface_point(start, u))
+    throw std::invalid_argument("refine_closest_point: the start is not a point of the model's surface");
+  const bool moved = u.chart != start.chart || u.x != start.x || u.y != start.y;
+  Chart_jacobian J, Jv;
+  Eigen::Vector3d x;
+  if(start_point != nullptr && start_jacobian != nullptr && !moved)
+  {
+    x = *start_point;
+    J = *start_jacobian;
+  }
+  else
+    x = eval(u, J);
+  double d2 = (p - x).squaredNorm();
+  // One safeguarded Gauss-Newton step in the coordinates of chart point
+  // `from` (the current point, or another representative of it) with the
+  // chart Jacobian `Jf` there: true if it brought the point closer (then u,
+  // x, d2, J are the new point's). `converged`: no step is worth taking;
+  // `left_surface`: a trial left the chart or the surface.
+  auto step_from = [&](const Chart_point& from, const Chart_jacobian& Jf, bool& converged, bool& left_surface) {
+    converged = left_surface = false;
+    const double j00 = Jf.col(0).squaredNorm(), j11 = Jf.col(1).squaredNorm(), j01 = Jf.col(0).dot(Jf.col(1));
+    const double t = j00 + j11;
+    if(!(t > 0.) || !std::isfinite(t))
+      return false;
+    const Eigen::Vector3d r = p - x;
+    const double g0 = Jf.col(0).dot(r), g1 = Jf.col(1).dot(r);
+    // Levenberg-regularized: where exponents above 1 flatten the map (its chart
+    // Jacobian loses rank on the poles and axes) the step still moves along
+    // the direction that is left. When one column is much shorter than the
+    // other (next to such a place) and the step fails, it is retried with a
+    // strong damping of that direction: its Gauss-Newton step is then far too
+    // long, and would otherwise take the good step along the other one with it.
+    const bool ill_conditioned = (std::min)(j00, j11) < 1e-3 * t;
+    for(int level = 0; level < (ill_conditioned ? 2 : 1); ++level)
+    {
+      // the 2 x 2 system (J^T J + mu tr I) step = J^T r, solved in closed form
+      // (positive definite: the damping keeps the determinant away from zero)
+      const double mu = (level == 0 ? 1e-10 : 1e-3) * t;
+      const double a = j00 + mu, c = j11 + mu, det = a * c - j01 * j01;
+      if(!(det > 0.))
+        return false;
+      Eigen::Vector2d step((c * g0 - j01 * g1) / det, (a * g1 - j01 * g0) / det);
+      const double length2 = step.squaredNorm();
+      // At the foot point to the accuracy that matters: a tangential error
+      // of 1e-9 chart units changes the distance by ~1e-18 of the model's size.
+      if(!(length2 > 1e-18) || (level == 0 && step.dot(Eigen::Vector2d(g0, g1)) <= relative_tolerance * d2))
+      {
+        converged = true;
+        return false;
+      }
+      // A step this short that fails at full length fails on rounding alone
+      // (the squared distance is only known to ~1e-13 relatively): halving it
+      // cannot help.
+      // Next to a point where the chart map is singular (exponents above 1
+      // on both the equator and a meridian: both columns vanish) the
+      // Gauss-Newton step overshoots by orders of magnitude: up to 12 halvings
+      // (a step 4096 times shorter), down to that length.
+      const int halvings = (length2 < 1e-14) ? 1 : 12;
+      for(int half = 0; half < halvings && (half < 4 || step.squaredNorm() >= 1e-14); ++half, step *= 0.5)
+      {
+        Chart_point v;
+        if(!model.canonical_surface_point(Chart_point(from.chart, from.x + step[0], from.y + step[1]), v))
+        {
+          left_surface = true; // off the chart or into a discarded part of the domain
+          continue;
+        }
+        const Eigen::Vector3d xv = eval(v, Jv); // the Jacobian of the next step, if this one is kept
+        const double dv = (p - xv).squaredNorm();
+        if(dv < d2)
+        {
+          u = v; x = xv; d2 = dv; J = Jv;
+          return true;
+        }
+      }
+      if(length2 < 1e-14)
+      {
+        converged = true;
+        return false;
+      }
+    }
+    return false;
+  };
+  for(int it = 0; it < max_iterations && d2 > 0.; ++it)
+  {
+    const Chart_point u0 = u;
+    const Eigen::Vector3d x0 = x;
+    const double d0 = d2;
+    const Chart_jacobian J0 = J;
+    bool converged, left_surface;
+    bool improved = step_from(u, J, converged, left_surface);
+    // A step toward the discarded edge of a blend's strip (or disk): the
+    // surface goes on in the added component's chart, so a step is also
+    // taken from the same point expressed there, with a chart Jacobian by
+    // central differences (rare), and the closer result is kept.
+    if(!converged && left_surface)
+    {
+      const std::vector<Chart_point> others = model.alternative_chart_points(u0);
+      const Chart_point u1 = u;
+      const Eigen::Vector3d x1 = x;
+      const double d1 = d2;
+      const Chart_jacobian J1 = J;
+      for(const Chart_point& w : others)
+      {
+        u = u0; x = x0; d2 = d0; J = J0;
+        const double h = 1e-7;
+        Chart_jacobian Jw;
+        for(int k = 0; k < 2; ++k)
+        {
+          const Chart_point a(w.chart, w.x + (k == 0 ? h : 0.), w.y + (k == 1 ? h : 0.));
+          const Chart_point b(w.chart, w.x - (k == 0 ? h : 0.), w.y - (k == 1 ? h : 0.));
+          const auto xa = model.point(a), xb = model.point(b);
+          Jw.col(k) = Eigen::Vector3d(xa.x() - xb.x(), xa.y() - xb.y(), xa.z() - xb.z()) / (2. * h);
+        }
+        bool c2, l2;
+        if(step_from(w, Jw, c2, l2) && d2 < d1)
+        {
+          improved = true;
+          break;
+        }
+        u = u1; x = x1; d2 = d1; J = J1;
+      }
+    }
+    if(!improved)
+      break;
+  }
+  return Foot_point{u, x, d2};
+}
+
+} // namespace internal
+
+/*!
+\ingroup PkgBlendedShapeFitting
+The closest point of `p` on the analytic surface of `model`, starting from
+`start` (typically the chart point of the closest point on the tessellation,
+Closest_point_locator::locate()): at most `max_iterations` safeguarded
+Gauss-Newton steps on the chart coordinates, with the analytic chart
+Jacobian (`point_and_chart_jacobian()`: one evaluation per step, which also
+gives the point), each kept only if it brings the model point closer (the
+step is halved up to three times otherwise, and where the chart Jacobian is
+ill-conditioned, retried with a strong Levenberg damping). A step that leaves
+a chart is taken in the canonical chart of its end point. The iteration stops
+when the step is below 1e-9 chart units (the foot point is then known far
+beyond what distances and normals need), or when a step shorter than 1e-7
+fails (it then only fails on rounding).
+
+The tessellation is a piecewise linear approximation: a closest point found
+on it maps back to a chart point a little off the true foot point (by the
+chord error of the chart triangle), and two charts that share a mesh edge map
+it to different such chart points. Refinement removes this.
+
+`Model` provides `point_and_chart_jacobian()` and `canonical_surface_point()`
+(as Deformable_model and Deformable_blended_model do); steps that leave the
+surface (a chart's domain, or into a discarded part of a blended shape's
+domain) are treated as failed.
+\throws std::invalid_argument if `start` is not on the surface.
+*/
+template <class Model>
+Chart_point refine_closest_point(const Model& model, const Eigen::Vector3d& p, Chart_point start, int max_iterations)
+{
+  return internal::refine_foot_point(model, p, start, max_iterations).u;
+}
+
+
+} // namespace Blended_shapes
+} // namespace CGAL
+
+#endif // CGAL_BLENDED_SHAPE_FITTING_CLOSEST_POINT_LOCATOR_H

@@ -1,0 +1,159 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
+#ifndef CGAL_BLENDED_SHAPE_FITTING_FIT_METRICS_H
+#define CGAL_BLENDED_SHAPE_FITTING_FIT_METRICS_H
+
+#include <CGAL/Blended_shape/Primitives/Chart_mesh.h>
+#include <CGAL/Blended_shape/Fitting/initialize_from_moments.h>
+
+#include <CGAL/AABB_face_graph_triangle_primitive.h>
+#include <CGAL/AABB_traits.h>
+#include <CGAL/AABB_tree.h>
+#include <CGAL/Surface_mesh.h>
+
+#include <Eigen/Core>
+
+#include <array>
+#include <cmath>
+#include <optional>
+#include <random>
+#include <vector>
+
+namespace CGAL {
+namespace Blended_shapes {
+
+/*!
+\ingroup PkgBlendedShapeMetrics
+The figures reported for a fit (DESIGN notes sec. 5; Figure 18 of the paper).
+*/
+struct Fit_metrics
+{
+  std::size_t number_of_points = 0;      ///< N, the number of data points
+  std::size_t number_of_parameters = 0;  ///< dimension of q
+  std::size_t iterations = 0;            ///< iterations of the fit, all phases and starts
+  /// Eq. 14, read as `RMS_j = sqrt( (1/N) sum_i (dhat_j . (p_i - x(u_i)))^2 ) / |d_j|`
+  /// with `d_j` the j-th diameter of the initial best-fit ellipsoid (twice its
+  /// j-th semi-axis), largest first, and `dhat_j` its direction;
+  /// fractions (0.012 = 1.2 %).
+  std::array<double, 3> relative_rms = {{0., 0., 0.}};
+  double rms = 0.;                       ///< `sqrt( (1/N) sum_i |p_i - x(u_i)|^2 )`
+  double rms_over_bbox_diagonal = 0.;    ///< rms / diagonal of the points' bounding box
+  double seconds = 0.;                   ///< wall time of the fit
+  std::optional<double> chamfer_distance; ///< to a reference mesh, when one was given
+  bool converged = false;  ///< the fit reached steady state on all points
+  bool aborted = false;    ///< the callback stopped the fit
+};
+
+/// \ingroup PkgBlendedShapeMetrics
+/// Relative RMS per principal direction of `initial` (eq. 14 as read above)
+/// of the residuals `p_i - x(u_i)`.
+template <class GeomTraits>
+std::array<double, 3> relative_rms(const std::vector<Eigen::Vector3d>& residuals,
+                                   const Ellipsoid_fit<GeomTraits>& initial)
+{
+  std::array<double, 3> rms = {{0., 0., 0.}};
+  if(residuals.empty())
+    return rms;
+  const Eigen::Matrix3d R = initial.rotation_matrix();
+  for(const Eigen::Vector3d& r : residuals)
+    for(int j = 0; j < 3; ++j)
+      rms[std::size_t(j)] += CGAL::square(R.col(j).dot(r));
+  for(int j = 0; j < 3; ++j)
+    rms[std::size_t(j)] = std::sqrt(rms[std::size_t(j)] / double(residuals.size())) /
+                          (2. * initial.axes[std::size_t(j)]);
+  return rms;
+}
+
+namespace internal {
+
+// Points spread uniformly by area over triangles given as a range of corner
+// triples; deterministic for a seed.
+template <class Point_3>
+std::vector<Point_3> sample_triangles(const std::vector<std::array<Point_3, 3>>& triangles,
+                                      std::size_t count, unsigned int seed)
+{
+  std::vector<double> cumulative;
+  double total = 0.;
+  for(const auto& t : triangles)
+  {
+    total += std::sqrt(CGAL::to_double(CGAL::squared_area(t[0], t[1], t[2])));
+    cumulative.push_back(total);
+  }
+  std::vector<Point_3> samples;
+  if(!(total > 0.))
+    return samples;
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<double> unit(0., 1.);
+  for(std::size_t i = 0; i < count; ++i)
+  {
+    const std::size_t k = std::size_t(std::lower_bound(cumulative.begin(), cumulative.end(), unit(rng) * total) -
+                                      cumulative.begin());
+    const auto& t = triangles[(std::min)(k, triangles.size() - 1)];
+    double a = unit(rng), b = unit(rng);
+    if(a + b > 1.) { a = 1. - a; b = 1. - b; }
+    samples.push_back(t[0] + a * (t[1] - t[0]) + b * (t[2] - t[0]));
+  }
+  return samples;
+}
+
+template <class Mesh>
+std::vector<std::array<typename Mesh::Point, 3>> mesh_triangles(const Mesh& mesh)
+{
+  std::vector<std::array<typename Mesh::Point, 3>> t;
+  for(auto f : faces(mesh))
+  {
+    const auto h = halfedge(f, mesh);
+    t.push_back({{mesh.point(source(h, mesh)), mesh.point(target(h, mesh)), mesh.point(target(next(h, mesh), mesh))}});
+  }
+  return t;
+}
+
+template <class Mesh>
+double mean_distance_to(const std::vector<typename Mesh::Point>& samples, const std::vector<const Mesh*>& meshes)
+{
+  typedef CGAL::AABB_face_graph_triangle_primitive<Mesh, CGAL::Default, CGAL::Tag_false> Primitive;
+  typedef typename CGAL::Kernel_traits<typename Mesh::Point>::Kernel K;
+  CGAL::AABB_tree<CGAL::AABB_traits<K, Primitive>> tree;
+  for(const Mesh* m : meshes)
+    tree.insert(faces(*m).first, faces(*m).second, *m);
+  tree.build();
+  tree.accelerate_distance_queries();
+  double sum = 0.;
+  for(const auto& p : samples)
+    sum += std::sqrt(CGAL::to_double(tree.squared_distance(p)));
+  return samples.empty() ? 0. : sum / double(samples.size());
+}
+
+} // namespace internal
+
+/*!
+\ingroup PkgBlendedShapeMetrics
+Symmetric Chamfer distance between a model (its chart meshes, as positioned)
+and a reference triangle mesh: the mean of the two mean closest-point
+distances, each over `samples` points spread uniformly by area on one surface
+(deterministic for `seed`). The chart meshes overlap near seams, which
+samples those bands twice; with the default margin the effect is small.
+*/
+template <class GeomTraits>
+double symmetric_chamfer_distance(const std::vector<Chart_mesh<GeomTraits>>& model,
+                                  const CGAL::Surface_mesh<typename GeomTraits::Point_3>& reference,
+                                  std::size_t samples = 20000, unsigned int seed = 0)
+{
+  typedef CGAL::Surface_mesh<typename GeomTraits::Point_3> Mesh;
+  std::vector<std::array<typename GeomTraits::Point_3, 3>> model_triangles;
+  std::vector<const Mesh*> model_meshes;
+  for(const auto& cm : model)
+  {
+    const auto t = internal::mesh_triangles(cm.mesh());
+    model_triangles.insert(model_triangles.end(), t.begin(), t.end());
+    model_meshes.push_back(&cm.mesh());
+  }
+  const auto from_model = internal::sample_triangles(model_triangles, samples, seed);
+  const auto from_reference = internal::sample_triangles(internal::mesh_triangles(reference), samples, seed + 1);
+  return 0.5 * (internal::mean_distance_to(from_model, std::vector<const Mesh*>{&reference}) +
+                internal::mean_distance_to(from_reference, model_meshes));
+}
+
+} // namespace Blended_shapes
+} // namespace CGAL
+
+#endif // CGAL_BLENDED_SHAPE_FITTING_FIT_METRICS_H

@@ -1,0 +1,81 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
+#ifndef BLENDED_SHAPE_TESTING_SYNTHETIC_SCANS_H
+#define BLENDED_SHAPE_TESTING_SYNTHETIC_SCANS_H
+
+#include <CGAL/Blended_shape/Fitting/Deformable_model.h>
+#include <CGAL/Blended_shape/Primitives/Superquadric_ellipsoid.h>
+#include <CGAL/Blended_shape/Fitting/sample_model.h>
+
+#include <CGAL/Bbox_3.h>
+
+#include <cmath>
+#include <random>
+#include <vector>
+
+namespace CGAL {
+namespace Blended_shapes {
+namespace testing {
+
+// Seeded synthetic data shared by the tests and the benchmarks.
+
+// A random superellipsoid: a_i in [0.5, 2.5] pairwise at least 10 % apart
+// (so that its axes are defined), exponents in [0.3, 1.7], random pose.
+template <class K>
+Deformable_model<Superquadric_ellipsoid<K>> random_superellipsoid(std::mt19937_64& rng)
+{
+  std::uniform_real_distribution<double> size(0.5, 2.5), expo(0.3, 1.7), shift(-5., 5.);
+  std::normal_distribution<double> g(0., 1.);
+  std::array<double, 3> a;
+  do { a = {{size(rng), size(rng), size(rng)}}; }
+  while(std::abs(a[0] / a[1] - 1.) < 0.1 || std::abs(a[1] / a[2] - 1.) < 0.1 || std::abs(a[0] / a[2] - 1.) < 0.1);
+  const Superquadric_ellipsoid<K> s(a[0], a[1], a[2], expo(rng), expo(rng));
+  return Deformable_model<Superquadric_ellipsoid<K>>(s, Eigen::Vector3d(shift(rng), shift(rng), shift(rng)),
+                                                     Eigen::Vector4d(g(rng), g(rng), g(rng), g(rng)));
+}
+
+template <class Point_3>
+double bounding_box_diagonal(const std::vector<Point_3>& pts)
+{
+  CGAL::Bbox_3 b;
+  for(const auto& p : pts) b += p.bbox();
+  return std::sqrt(CGAL::square(b.xmax() - b.xmin()) + CGAL::square(b.ymax() - b.ymin()) +
+                   CGAL::square(b.zmax() - b.zmin()));
+}
+
+// `n` surface samples of `model`: all around, or (single view) those facing
+// an eye 10 model sizes away in a random direction; then isotropic Gaussian
+// noise of `noise` times the bounding-box diagonal of the samples, whose
+// standard deviation is returned in `sigma_out`.
+template <class Model>
+std::vector<typename Model::Point_3> synthetic_scan(const Model& model, std::size_t n, bool single_view,
+                                                    double noise, std::mt19937_64& rng, double* sigma_out = nullptr)
+{
+  typedef typename Model::Point_3 Point_3;
+  Point_3 eye;
+  if(single_view)
+  {
+    std::normal_distribution<double> g(0., 1.);
+    Eigen::Vector3d d(g(rng), g(rng), g(rng));
+    d = model.translation() + 10. * model.shape().parameters().template head<3>().maxCoeff() * d.normalized();
+    eye = Point_3(d[0], d[1], d[2]);
+  }
+  const auto samples = sample_model_surface(model, n, unsigned(rng()), 24, single_view ? &eye : nullptr);
+  std::vector<Point_3> pts;
+  pts.reserve(samples.size());
+  for(const auto& s : samples) pts.push_back(s.point);
+  const double sigma = noise * bounding_box_diagonal(pts);
+  if(sigma > 0.)
+  {
+    std::normal_distribution<double> g(0., sigma);
+    for(auto& p : pts)
+      p = Point_3(p.x() + g(rng), p.y() + g(rng), p.z() + g(rng));
+  }
+  if(sigma_out) *sigma_out = sigma;
+  return pts;
+}
+
+} // namespace testing
+} // namespace Blended_shapes
+} // namespace CGAL
+
+#endif // BLENDED_SHAPE_TESTING_SYNTHETIC_SCANS_H
