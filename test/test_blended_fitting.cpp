@@ -7,7 +7,7 @@
 #include "test_util.h"
 #include "blended_shape_test_util.h"
 
-#include <CGAL/Blended_shape/Fitting/Blended_shape_fitter.h>
+#include <CGAL/Blended_shape/Fitting/Deformable_model_fitter.h>
 #include <CGAL/Blended_shape/Fitting/Deformable_blended_model.h>
 #include <CGAL/Blended_shape/Fitting/sample_model.h>
 
@@ -202,7 +202,7 @@ void test_forces_against_brute_force(const std::string& name, const Model<K>& m)
 {
   double sigma, diagonal;
   const auto pts = noisy_samples<K>(m, reduced ? 150 : 500, 0.01, 17, sigma, diagonal);
-  BS::Blended_shape_fitter<Model<K>> fitter(pts, m);
+  BS::Deformable_model_fitter<Model<K>> fitter(pts, m);
   const auto forces = fitter.forces();
   const auto dense = BS::sample_model_surface(m, reduced ? 4000 : 20000, 23);
   double worst = 0.;
@@ -269,7 +269,7 @@ void test_energy_decrease(const std::string& name, const Model<K>& truth, BS::In
   const auto pts = noisy_samples<K>(truth, reduced ? 600 : 1500, 0.002, 29, sigma, diagonal);
   BS::Fitting_settings settings;
   settings.integrator = integrator;
-  BS::Blended_shape_fitter<Model<K>> fitter(pts, perturbed(truth, 1.), settings);
+  BS::Deformable_model_fitter<Model<K>> fitter(pts, perturbed(truth, 1.), settings);
   int accepted = 0;
   for(int it = 0; it < (reduced ? 3 : 6); ++it)
   {
@@ -335,7 +335,7 @@ void test_recovery(const std::string& name, const Model<K>& truth, double amount
   double sigma, diagonal;
   const auto pts = noisy_samples<K>(truth, reduced ? 1000 : 3000, 0.002, 31, sigma, diagonal);
   const Model<K> start = perturbed(truth, amount);
-  BS::Blended_shape_fitter<Model<K>> fitter(pts, start);
+  BS::Deformable_model_fitter<Model<K>> fitter(pts, start);
   const double rms_start = std::sqrt(fitter.mean_squared_distance(true));
   const BS::Fitting_status status = fitter.run();
   const double rms = std::sqrt(fitter.mean_squared_distance(true));

@@ -112,7 +112,7 @@ void test_energy_decrease(BS::Integrator integrator, std::mt19937_64& rng)
   start.set_parameters(q);
   BS::Fitting_settings s;
   s.integrator = integrator;
-  BS::Blended_shape_fitter<Model<K>> fitter(pts, start, s);
+  BS::Deformable_model_fitter<Model<K>> fitter(pts, start, s);
   fitter.use_all_points(true);
   int accepted = 0;
   for(int it = 0; it < 8; ++it)

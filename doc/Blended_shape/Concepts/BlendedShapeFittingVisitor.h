@@ -3,7 +3,7 @@
 \ingroup PkgBlendedShapeConcepts
 \cgalConcept
 
-The progress hooks of a fit: `CGAL::Blended_shapes::Blended_shape_fitter::run()`
+The progress hooks of a fit: `CGAL::Blended_shapes::Deformable_model_fitter::run()`
 and `CGAL::Blended_shapes::fit_blended_shape()` (named parameter `visitor`)
 call them as the fit goes.
 

@@ -3,7 +3,7 @@
 \ingroup PkgBlendedShapeConcepts
 \cgalConcept
 
-A shape model that `CGAL::Blended_shapes::Blended_shape_fitter` can fit
+A shape model that `CGAL::Blended_shapes::Deformable_model_fitter` can fit
 (sec. 5.1): a map `x(u; q)` from chart points `u` to space with a parameter
 vector `q`, its model Jacobian `L = dx/dq` (eq. 6) and its chart Jacobian
 `dx/du` (for the closest-point projections), on charts that the fitter

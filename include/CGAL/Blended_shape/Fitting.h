@@ -8,7 +8,7 @@
 #include <CGAL/Blended_shape/Fitting/initialize_from_moments.h>
 #include <CGAL/Blended_shape/Fitting/Closest_point_locator.h>
 #include <CGAL/Blended_shape/Fitting/Fitting_visitor.h>
-#include <CGAL/Blended_shape/Fitting/Blended_shape_fitter.h>
+#include <CGAL/Blended_shape/Fitting/Deformable_model_fitter.h>
 #include <CGAL/Blended_shape/Fitting/Fit_metrics.h>
 #include <CGAL/Blended_shape/Fitting/sample_model.h>
 #include <CGAL/Blended_shape/Fitting/fit_blended_shape.h>

@@ -29,7 +29,7 @@ is `[ I | (dR/dq_theta) s | R ds/dq_s ]`, sparse by component: a point
 depends only on the components and blends that reach it (point_and_jacobian()
 fills the others with zeros; point_and_sparse_jacobian() leaves them out).
 
-It has the interface Blended_shape_fitter asks of a model, so a blended
+It has the interface Deformable_model_fitter asks of a model, so a blended
 shape of fixed structure is fitted the same way as a single superquadric
 (Deformable_model). Its charts are those of all the components, numbered in
 order: chart `g` of the model is chart `local_chart(g)` of component

@@ -2,7 +2,7 @@
 #ifndef CGAL_BLENDED_SHAPE_FITTING_FIT_BLENDED_SHAPE_H
 #define CGAL_BLENDED_SHAPE_FITTING_FIT_BLENDED_SHAPE_H
 
-#include <CGAL/Blended_shape/Fitting/Blended_shape_fitter.h>
+#include <CGAL/Blended_shape/Fitting/Deformable_model_fitter.h>
 #include <CGAL/Blended_shape/Fitting/Deformable_model.h>
 #include <CGAL/Blended_shape/Fitting/Fit_metrics.h>
 #include <CGAL/Blended_shape/Primitives/Superquadric_ellipsoid.h>
@@ -161,7 +161,7 @@ struct Fit_result
 
 Fits a model to `points`, in one call: best-fit ellipsoid initialization
 (initialize_from_moments()), then the physics-based fit of
-Blended_shape_fitter until steady state, then the metrics.
+Deformable_model_fitter until steady state, then the metrics.
 
 (This release fits a single superquadric ellipsoid; structural and
 topological evolution, i.e. parts and holes, come with the blending features.)
@@ -225,7 +225,7 @@ auto fit_blended_shape(const PointRange& points, const NamedParameters& np = CGA
 
   const auto initial = initialize_from_moments(points, CGAL::parameters::point_map(point_map));
   typedef Deformable_model<Superquadric_ellipsoid<Geom_traits>> Model;
-  typedef Blended_shape_fitter<Model> Fitter;
+  typedef Deformable_model_fitter<Model> Fitter;
   // The short candidate fits: on a 25th of the subset (160 points by
   // default: enough to tell basins apart), loose tolerances, at most 10 iterations.
   Fitting_settings rough = s;

@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: LGPL-3.0-or-later
-#ifndef CGAL_BLENDED_SHAPE_FITTING_BLENDED_SHAPE_FITTER_H
-#define CGAL_BLENDED_SHAPE_FITTING_BLENDED_SHAPE_FITTER_H
+#ifndef CGAL_BLENDED_SHAPE_FITTING_DEFORMABLE_MODEL_FITTER_H
+#define CGAL_BLENDED_SHAPE_FITTING_DEFORMABLE_MODEL_FITTER_H
 
 #include <CGAL/Blended_shape/Primitives/Chart_mesh.h>
 #include <CGAL/Blended_shape/Fitting/Closest_point_locator.h>
@@ -33,7 +33,7 @@ enum class Integrator
 {
   /// The paper's explicit first-order dynamics: `q <- q + dt f_q` with
   /// `dt = 1 / lambda_max(J^T J)`, the largest step that is stable for the
-  /// linearized dynamics, halved until the step is accepted (see Blended_shape_fitter::step()).
+  /// linearized dynamics, halved until the step is accepted (see Deformable_model_fitter::step()).
   Explicit,
   /// An implicit (damped Gauss-Newton, Levenberg-Marquardt) step of the same dynamics with the
   /// same correspondences: `(J^T J + lambda diag(J^T J)) dq = J^T r`.
@@ -172,7 +172,7 @@ points until steady state: the relative energy decrease of a step is below
   primitive) or Deformable_blended_model (a blended shape of fixed structure).
 */
 template <class Model>
-class Blended_shape_fitter
+class Deformable_model_fitter
 {
 public:
   typedef typename Model::Geom_traits Geom_traits;  ///< the kernel
@@ -185,7 +185,7 @@ public:
   /// \throws Input_error if the points are unusable (see check_points()).
   /// \throws std::invalid_argument on invalid settings.
   template <class PointRange, class PointMap = CGAL::Identity_property_map<Point_3>>
-  Blended_shape_fitter(const PointRange& points, const Model& initial_model,
+  Deformable_model_fitter(const PointRange& points, const Model& initial_model,
                        const Fitting_settings& settings = Fitting_settings(),
                        PointMap point_map = PointMap())
     : m_model(initial_model), m_settings(settings)
@@ -196,7 +196,7 @@ public:
        !(settings.maximum_size_factor > 0.) || !(settings.placement_stiffness >= 0.) ||
        !std::isfinite(settings.placement_stiffness) || settings.projection_iterations < 1 ||
        !(settings.maximum_running_time > 0.))
-      throw std::invalid_argument("Blended_shape_fitter: invalid settings (mesh_resolution >= 2, "
+      throw std::invalid_argument("Deformable_model_fitter: invalid settings (mesh_resolution >= 2, "
                                   "maximum_iterations >= 1, steady_iterations >= 1, projection_iterations >= 1, "
                                   "tolerances >= 0, maximum_size_factor > 0, a finite placement_stiffness >= 0 and "
                                   "maximum_running_time > 0 are required)");
@@ -242,7 +242,7 @@ public:
   {
     if(model.number_of_parameters() != m_model.number_of_parameters() ||
        model.number_of_charts() != m_model.number_of_charts())
-      throw std::invalid_argument("Blended_shape_fitter::set_model: the model structure differs");
+      throw std::invalid_argument("Deformable_model_fitter::set_model: the model structure differs");
     m_model = model;
     m_rest = m_model.parameters(); // the springs hold the placements to where they are now
     m_spring.clear();
@@ -862,4 +862,4 @@ private:
 } // namespace Blended_shapes
 } // namespace CGAL
 
-#endif // CGAL_BLENDED_SHAPE_FITTING_BLENDED_SHAPE_FITTER_H
+#endif // CGAL_BLENDED_SHAPE_FITTING_DEFORMABLE_MODEL_FITTER_H
