@@ -4,6 +4,7 @@
 
 #include <CGAL/Blended_shape/Primitives/Chart_mesh.h>
 #include <CGAL/Blended_shape/Fitting/Closest_point_locator.h>
+#include <CGAL/Blended_shape/Fitting/Fitting_settings.h>
 #include <CGAL/Blended_shape/Fitting/Fitting_visitor.h>
 #include <CGAL/Blended_shape/IO/check_points.h>
 #include <CGAL/Blended_shape/internal/Parameter_table.h>
@@ -26,65 +27,6 @@
 
 namespace CGAL {
 namespace Blended_shapes {
-
-/// \ingroup PkgBlendedShapeFitting
-/// How the dynamics `dq/dt = f_q` (eq. 7) are integrated.
-enum class Integrator
-{
-  /// The paper's explicit first-order dynamics: `q <- q + dt f_q` with
-  /// `dt = 1 / lambda_max(J^T J)`, the largest step that is stable for the
-  /// linearized dynamics, halved until the step is accepted (see Deformable_model_fitter::step()).
-  Explicit,
-  /// An implicit (damped Gauss-Newton, Levenberg-Marquardt) step of the same dynamics with the
-  /// same correspondences: `(J^T J + lambda diag(J^T J)) dq = J^T r`.
-  /// Same rest states, far fewer iterations. The default.
-  Gauss_newton
-};
-
-/// \ingroup PkgBlendedShapeFitting
-/// Optional down-weighting of far points (stray points of real scans).
-enum class Robust_weighting
-{
-  None,  ///< every point pulls with weight 1 (the paper)
-  /// Cauchy weights `w_i = 1 / (1 + (r_i / c)^2)`, recomputed every iteration from the
-  /// distances `r_i` to the model, with `c = 2.385 * 1.4826 * median(r_i)`.
-  Cauchy
-};
-
-/// \ingroup PkgBlendedShapeFitting
-/// Everything that steers a fit. The free function fit_blended_shape() sets
-/// these from named parameters.
-struct Fitting_settings
-{
-  Integrator integrator = Integrator::Gauss_newton; ///< the integration scheme
-  std::size_t maximum_iterations = 100;   ///< iterations over all phases
-  double energy_tolerance = 1e-10;        ///< relative energy decrease of one step
-  double force_tolerance = 1e-6;          ///< largest scaled parameter force, see Step_report::scaled_force
-  std::size_t steady_iterations = 2;      ///< consecutive steps under both tolerances
-  int mesh_resolution = 10;               ///< chart tessellation (rings from pole to equator)
-  int projection_iterations = 20;         ///< at most this many Gauss-Newton steps from a start to the closest point on the surface
-  std::size_t subset_size = 4000;         ///< points used before the all-points phase (0: all from the start)
-  unsigned int random_seed = 0;           ///< chooses the subset
-  bool rigid_first = false;               ///< parameter scheduling: translation and rotation alone first
-  std::size_t rigid_iterations = 5;       ///< at most this many rigid-only steps
-  Robust_weighting robust_weighting = Robust_weighting::None; ///< weighting of far points
-  /// Shape lengths (Parameter_kind::Length, e.g. semi-axes) are kept at most this
-  /// factor times the diameter of the points about their centroid (twice the
-  /// largest distance to it; unlike a bounding box, it does not depend on the
-  /// orientation of the cloud): with one view of an object nothing else stops
-  /// the model from growing where there is no data.
-  double maximum_size_factor = 1.;
-  /// The loose spring of sec. 3.5 that holds the placement of each added
-  /// component of a blended model (relative to its parent) to where it was
-  /// when the fit started: its stiffness per parameter is this fraction of
-  /// the mean stiffness the data give that placement's translation or
-  /// quaternion at the first step. It keeps the join good where the data
-  /// leave a placement free (a hole turning about its axis, a part sliding
-  /// along its base) and biases the rest by about this fraction of the
-  /// distance moved. 0: no spring.
-  double placement_stiffness = 0.01;
-  double maximum_running_time = HUGE_VAL; ///< seconds
-};
 
 /// \ingroup PkgBlendedShapeFitting
 /// What one iteration did.

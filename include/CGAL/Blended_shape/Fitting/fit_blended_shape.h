@@ -168,19 +168,16 @@ topological evolution, i.e. parts and holes, come with the blending features.)
 
 \param points the input points (at least `minimum_number_of_points`, finite, not all identical)
 \param np optional named parameters.
-  From CGAL::parameters:
+  The settings of the fit: every member of Fitting_settings, read by
+  settings_from_named_parameters() (meanings and defaults there).
+  From CGAL::parameters also:
   - `point_map` (default identity), `geom_traits` (default from the point type),
-  - `number_of_iterations`: the iteration limit (default 100),
   - `visitor`: see Default_fitting_visitor (default: none),
   - `callback`: `std::function<bool(double)>` called before each iteration with the
     fraction of the iteration budget spent; returning false stops the fit, which
-    then holds the last accepted model (default: none),
-  - `random_seed`: chooses the subset of the first phase (default 0),
-  - `maximum_running_time`: seconds (default: unlimited).
+    then holds the last accepted model (default: none).
 
-  From Blended_shapes::parameters (see Fitting_settings for meanings and defaults):
-  `integrator`, `energy_tolerance`, `force_tolerance`, `steady_iterations`,
-  `mesh_resolution`, `subset_size`, `rigid_first`, `robust_weighting`, `maximum_size_factor`,
+  From Blended_shapes::parameters also:
   `try_all_axes` (`bool`, default `true`: fit roughly from each of the three choices
   of the primitive's z axis among the principal directions, see make_initial_model(),
   and from the similar superquadrics of the closest, see similar_superquadric(),
@@ -202,19 +199,7 @@ auto fit_blended_shape(const PointRange& points, const NamedParameters& np = CGA
   typedef CGAL::Surface_mesh<typename Geom_traits::Point_3> Mesh;
 
   const typename Types::Point_map point_map = Types::point_map(np);
-  Fitting_settings s;
-  s.maximum_iterations = choose_parameter(get_parameter(np, CGAL::internal_np::number_of_iterations), s.maximum_iterations);
-  s.random_seed = choose_parameter(get_parameter(np, CGAL::internal_np::random_seed), s.random_seed);
-  s.maximum_running_time = choose_parameter(get_parameter(np, CGAL::internal_np::maximum_running_time), s.maximum_running_time);
-  s.integrator = choose_parameter(get_parameter(np, internal_np::integrator), s.integrator);
-  s.energy_tolerance = choose_parameter(get_parameter(np, internal_np::energy_tolerance), s.energy_tolerance);
-  s.force_tolerance = choose_parameter(get_parameter(np, internal_np::force_tolerance), s.force_tolerance);
-  s.steady_iterations = choose_parameter(get_parameter(np, internal_np::steady_iterations), s.steady_iterations);
-  s.mesh_resolution = choose_parameter(get_parameter(np, internal_np::mesh_resolution), s.mesh_resolution);
-  s.subset_size = choose_parameter(get_parameter(np, internal_np::subset_size), s.subset_size);
-  s.rigid_first = choose_parameter(get_parameter(np, internal_np::rigid_first), s.rigid_first);
-  s.robust_weighting = choose_parameter(get_parameter(np, internal_np::robust_weighting), s.robust_weighting);
-  s.maximum_size_factor = choose_parameter(get_parameter(np, internal_np::maximum_size_factor), s.maximum_size_factor);
+  const Fitting_settings s = settings_from_named_parameters(np);
   const std::function<bool(double)> callback =
     choose_parameter(get_parameter(np, CGAL::internal_np::callback), std::function<bool(double)>());
   const Mesh* reference = choose_parameter(get_parameter(np, internal_np::reference_mesh), static_cast<const Mesh*>(nullptr));
