@@ -5,7 +5,7 @@
 // determinism, abort, and bad input.
 #include "test_util.h"
 
-#include <CGAL/Blended_shape/Fitting/fit_blended_shape.h>
+#include <CGAL/Blended_shape/Fitting/fit_superquadric.h>
 #include <CGAL/Blended_shape/Primitives/check_primitive.h>
 #include <blended_shape_testing/compare_superquadrics.h>
 #include <blended_shape_testing/equivariance.h>
@@ -169,7 +169,7 @@ void test_recovery(int full_views, int single_views, std::mt19937_64& rng)
     const Model<K> truth = random_superellipsoid<K>(rng);
     double sigma = 0.;
     const auto pts = scan<K>(truth, reduced ? 1500 : 3000, single, 0.002, rng, &sigma);
-    const auto r = BS::fit_blended_shape(pts);
+    const auto r = BS::fit_superquadric(pts);
     std::ostringstream label;
     label << (single ? "single view" : "full view") << " #" << t << " truth " << truth.shape().parameters().transpose();
     const double noise = sigma / diagonal<K>(pts);
@@ -209,7 +209,7 @@ void test_determinism_and_abort(std::mt19937_64& rng)
   const Model<K> truth = random_superellipsoid<K>(rng);
   const auto pts = scan<K>(truth, cloud_size(6000), true, 0.003, rng);
   const auto np = CGAL::parameters::random_seed(7);
-  const auto a = BS::fit_blended_shape(pts, np), b = BS::fit_blended_shape(pts, np);
+  const auto a = BS::fit_superquadric(pts, np), b = BS::fit_superquadric(pts, np);
   BS_CHECK(a.model.parameters() == b.model.parameters(), "same input and seed: different models");
   BS_CHECK(a.metrics.iterations == b.metrics.iterations && a.metrics.relative_rms == b.metrics.relative_rms,
            "same input and seed: different metrics");
@@ -219,7 +219,7 @@ void test_determinism_and_abort(std::mt19937_64& rng)
     BS_CHECK(f >= 0. && f <= 1., "callback fraction " << f);
     return ++calls < 3;
   };
-  const auto c = BS::fit_blended_shape(pts, CGAL::parameters::callback(stop_at_third));
+  const auto c = BS::fit_superquadric(pts, CGAL::parameters::callback(stop_at_third));
   BS_CHECK(c.metrics.aborted && !c.metrics.converged && calls == 3, "abort: calls " << calls);
   const Eigen::VectorXd q = c.model.parameters();
   bool valid = q.allFinite();
@@ -236,8 +236,8 @@ void test_explicit_integrator(std::mt19937_64& rng)
   const Model<K> truth(BS::Superquadric_ellipsoid<K>(1.5, 1., 0.6), Eigen::Vector3d(1., 2., 3.),
                        Eigen::Vector4d(0.9, 0.1, 0.3, -0.2));
   const auto pts = scan<K>(truth, 2000, false, 0.002, rng);
-  const auto gn = BS::fit_blended_shape(pts);
-  const auto ex = BS::fit_blended_shape(pts, BS::parameters::integrator(BS::Integrator::Explicit).number_of_iterations(2000));
+  const auto gn = BS::fit_superquadric(pts);
+  const auto ex = BS::fit_superquadric(pts, BS::parameters::integrator(BS::Integrator::Explicit).number_of_iterations(2000));
   BS_CHECK(ex.metrics.rms_over_bbox_diagonal <= 1.05 * gn.metrics.rms_over_bbox_diagonal,
            "explicit " << ex.metrics.rms_over_bbox_diagonal << " vs implicit " << gn.metrics.rms_over_bbox_diagonal);
   BS_CHECK(ex.metrics.iterations > gn.metrics.iterations,
@@ -249,7 +249,7 @@ void test_bad_input()
 {
   typedef typename K::Point_3 Point_3;
   auto code_of = [](const std::vector<Point_3>& pts) {
-    try { BS::fit_blended_shape(pts); }
+    try { BS::fit_superquadric(pts); }
     catch(const BS::Input_error& e) { return int(e.code()); }
     return -1;
   };
@@ -264,14 +264,14 @@ void test_bad_input()
   std::vector<Point_3> ok;
   for(int i = 0; i < 100; ++i) ok.emplace_back(std::cos(i), std::sin(i), 0.1 * (i % 7));
   int thrown = 0;
-  try { BS::fit_blended_shape(ok, BS::parameters::mesh_resolution(1)); } catch(const std::invalid_argument&) { ++thrown; }
-  try { BS::fit_blended_shape(ok, CGAL::parameters::number_of_iterations(0)); } catch(const std::invalid_argument&) { ++thrown; }
-  try { BS::fit_blended_shape(ok, BS::parameters::energy_tolerance(-1.)); } catch(const std::invalid_argument&) { ++thrown; }
+  try { BS::fit_superquadric(ok, BS::parameters::mesh_resolution(1)); } catch(const std::invalid_argument&) { ++thrown; }
+  try { BS::fit_superquadric(ok, CGAL::parameters::number_of_iterations(0)); } catch(const std::invalid_argument&) { ++thrown; }
+  try { BS::fit_superquadric(ok, BS::parameters::energy_tolerance(-1.)); } catch(const std::invalid_argument&) { ++thrown; }
   BS_CHECK(thrown == 3, "invalid settings accepted: " << 3 - thrown);
   // A flat cloud is a documented result, never NaN.
   std::vector<Point_3> flat;
   for(int i = 0; i < 200; ++i) flat.emplace_back(i % 20, i / 20, 0.);
-  const auto r = BS::fit_blended_shape(flat);
+  const auto r = BS::fit_superquadric(flat);
   BS_CHECK(r.model.parameters().allFinite() && std::isfinite(r.metrics.rms), "flat cloud");
 }
 

@@ -15,8 +15,8 @@
   or takes an existing pack as its second argument:
 
     namespace BSP = CGAL::Blended_shapes::parameters;
-    fit_blended_shape(points, BSP::integrator(Integrator::Explicit).number_of_iterations(500));
-    fit_blended_shape(points, BSP::refine_axes(false, CGAL::parameters::point_map(pm)));
+    fit_superquadric(points, BSP::integrator(Integrator::Explicit).number_of_iterations(500));
+    fit_superquadric(points, BSP::refine_axes(false, CGAL::parameters::point_map(pm)));
 */
 
 namespace CGAL {

@@ -42,7 +42,7 @@ enum class Robust_weighting
 Everything that steers a fit, with its defaults: the member initializers
 below are the only place they are written. Every member can be given as a
 named parameter, read by settings_from_named_parameters(), which the entry
-points that take named parameters (fit_blended_shape()) use.
+points that take named parameters (fit_superquadric()) use.
 */
 struct Fitting_settings
 {
