@@ -2,7 +2,8 @@
 // The physics-based fit (paper sec. 5.1-5.3): AABB closest points against
 // brute force, energy decrease at fixed correspondences for both
 // integrators, recovery of random superellipsoids, equivariance,
-// determinism, abort, and bad input.
+// determinism, abort, bad input, and the settings read from named
+// parameters.
 #include "test_util.h"
 
 #include <CGAL/Blended_shape/Fitting/fit_superquadric.h>
@@ -276,6 +277,38 @@ void test_bad_input()
 }
 
 
+// settings_from_named_parameters(): no parameter gives the defaults of
+// Fitting_settings, and each named parameter reaches its member.
+void test_settings_from_named_parameters()
+{
+  namespace BSP = BS::parameters;
+  const BS::Fitting_settings d, none = BS::settings_from_named_parameters();
+  BS_CHECK(none.integrator == d.integrator && none.maximum_iterations == d.maximum_iterations &&
+             none.energy_tolerance == d.energy_tolerance && none.force_tolerance == d.force_tolerance &&
+             none.steady_iterations == d.steady_iterations && none.mesh_resolution == d.mesh_resolution &&
+             none.projection_iterations == d.projection_iterations && none.subset_size == d.subset_size &&
+             none.random_seed == d.random_seed && none.rigid_first == d.rigid_first &&
+             none.rigid_iterations == d.rigid_iterations && none.robust_weighting == d.robust_weighting &&
+             none.maximum_size_factor == d.maximum_size_factor &&
+             none.placement_stiffness == d.placement_stiffness && none.maximum_running_time == d.maximum_running_time,
+           "settings without named parameters differ from the defaults");
+  const BS::Fitting_settings s = BS::settings_from_named_parameters(
+    BSP::integrator(BS::Integrator::Explicit, BSP::energy_tolerance(1e-7, BSP::force_tolerance(1e-3,
+    BSP::steady_iterations(std::size_t(3), BSP::mesh_resolution(7, BSP::projection_iterations(9,
+    BSP::subset_size(std::size_t(123), BSP::rigid_first(true, BSP::rigid_iterations(std::size_t(4),
+    BSP::robust_weighting(BS::Robust_weighting::Cauchy, BSP::maximum_size_factor(2.5,
+    BSP::placement_stiffness(0.5)))))))))))))
+      .number_of_iterations(std::size_t(77))
+      .random_seed(5u)
+      .maximum_running_time(3.));
+  BS_CHECK(s.integrator == BS::Integrator::Explicit && s.maximum_iterations == 77 && s.energy_tolerance == 1e-7 &&
+             s.force_tolerance == 1e-3 && s.steady_iterations == 3 && s.mesh_resolution == 7 &&
+             s.projection_iterations == 9 && s.subset_size == 123 && s.random_seed == 5 && s.rigid_first &&
+             s.rigid_iterations == 4 && s.robust_weighting == BS::Robust_weighting::Cauchy &&
+             s.maximum_size_factor == 2.5 && s.placement_stiffness == 0.5 && s.maximum_running_time == 3.,
+           "a named parameter did not reach its setting");
+}
+
 template <class K>
 void run(const char* kernel, bool full)
 {
@@ -299,6 +332,7 @@ void run(const char* kernel, bool full)
 
 int main()
 {
+  test_settings_from_named_parameters();
   run<CGAL::Exact_predicates_inexact_constructions_kernel>("Epick", true);
   run<CGAL::Simple_cartesian<double>>("Simple_cartesian<double>", false);
   blended_shape_test::report("test_fitting");

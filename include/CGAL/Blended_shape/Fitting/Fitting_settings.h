@@ -94,21 +94,16 @@ Fitting_settings settings_from_named_parameters(const NamedParameters& np = CGAL
   using CGAL::parameters::choose_parameter;
   using CGAL::parameters::get_parameter;
   Fitting_settings s;
-  s.integrator = choose_parameter(get_parameter(np, internal_np::integrator), s.integrator);
+  // CGAL's own names
   s.maximum_iterations = choose_parameter(get_parameter(np, CGAL::internal_np::number_of_iterations), s.maximum_iterations);
-  s.energy_tolerance = choose_parameter(get_parameter(np, internal_np::energy_tolerance), s.energy_tolerance);
-  s.force_tolerance = choose_parameter(get_parameter(np, internal_np::force_tolerance), s.force_tolerance);
-  s.steady_iterations = choose_parameter(get_parameter(np, internal_np::steady_iterations), s.steady_iterations);
-  s.mesh_resolution = choose_parameter(get_parameter(np, internal_np::mesh_resolution), s.mesh_resolution);
-  s.projection_iterations = choose_parameter(get_parameter(np, internal_np::projection_iterations), s.projection_iterations);
-  s.subset_size = choose_parameter(get_parameter(np, internal_np::subset_size), s.subset_size);
   s.random_seed = choose_parameter(get_parameter(np, CGAL::internal_np::random_seed), s.random_seed);
-  s.rigid_first = choose_parameter(get_parameter(np, internal_np::rigid_first), s.rigid_first);
-  s.rigid_iterations = choose_parameter(get_parameter(np, internal_np::rigid_iterations), s.rigid_iterations);
-  s.robust_weighting = choose_parameter(get_parameter(np, internal_np::robust_weighting), s.robust_weighting);
-  s.maximum_size_factor = choose_parameter(get_parameter(np, internal_np::maximum_size_factor), s.maximum_size_factor);
-  s.placement_stiffness = choose_parameter(get_parameter(np, internal_np::placement_stiffness), s.placement_stiffness);
   s.maximum_running_time = choose_parameter(get_parameter(np, CGAL::internal_np::maximum_running_time), s.maximum_running_time);
+  // the package's, one per member of the same name (internal/parameter_names.h)
+#define CGAL_BLENDED_SHAPE_PARAMETER(NAME)
+#define CGAL_BLENDED_SHAPE_FITTING_SETTING(NAME) s.NAME = choose_parameter(get_parameter(np, internal_np::NAME), s.NAME);
+#include <CGAL/Blended_shape/internal/parameter_names.h>
+#undef CGAL_BLENDED_SHAPE_FITTING_SETTING
+#undef CGAL_BLENDED_SHAPE_PARAMETER
   return s;
 }
 
