@@ -20,7 +20,8 @@ the data goes. With its default `try_all_axes = true`, `fit_superquadric()`
 runs several fits in a row: three short ones (one per choice of the
 primitive's `z` axis, each ending with the `Subset` phase), the full one, then
 short fits of its similar superquadrics and full fits of those that come out
-clearly closer (see the manual); the iteration numbers start from 0 in each.
+clearly closer (`CGAL::Blended_shapes::Superquadric_multistart_search`, see
+the manual); the iteration numbers start from 0 in each.
 
 \cgalHasModelsBegin
 \cgalHasModels{CGAL::Blended_shapes::Default_fitting_visitor}

@@ -8,6 +8,9 @@ A shape model that `CGAL::Blended_shapes::Deformable_model_fitter` can fit
 vector `q`, its model Jacobian `L = dx/dq` (eq. 6) and its chart Jacobian
 `dx/du` (for the closest-point projections), on charts that the fitter
 tessellates once (`CGAL::Blended_shapes::Chart_mesh`) and positions by the model.
+The numbers of parameters and charts are those of the model's structure;
+when it changes (a split, say), the fitter is told by
+`Deformable_model_fitter::restructure()` and tessellates the charts anew.
 
 Parameters: the fitter keeps them within their bounds (shape lengths also
 under a multiple of the data's size), and a parameter whose Jacobian column
