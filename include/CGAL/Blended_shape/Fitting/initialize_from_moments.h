@@ -14,7 +14,10 @@
 
 #include <Eigen/Dense>
 
+#include <algorithm>
 #include <array>
+#include <utility>
+#include <vector>
 #include <cmath>
 #include <stdexcept>
 
@@ -60,77 +63,25 @@ struct Ellipsoid_fit
   }
 };
 
-/*!
-\ingroup PkgBlendedShapeInitialization
+namespace internal {
 
-Fits the initial ellipsoid to `points` from their central moments (sec. 5.3):
-the centre is the centroid, the axes directions are the eigenvectors of the
-covariance matrix (largest spread first; the first two are oriented so that
-the third central moment along each is positive, which makes the result follow
-any rotation, translation or uniform scaling of the cloud, and the third
-completes a right-handed frame, so R is a rotation; a direction along which the
-cloud is symmetric gets the sign that makes its largest component positive), and
-the semi-axes are `sqrt(3 lambda_i)` (`lambda_i` the eigenvalues), exact for
-points spread uniformly over a sphere.
-
-For non-spherical shapes the moment estimate is biased (about 13 % short on
-the long axis of a 4:1 ellipsoid surface), so by default the semi-axes are
-then refined, with the centre and directions kept, by the linear least-squares
-fit of `sum_i k_i y_i^2 = 1` in the principal frame; the refinement is
-kept only if every `k_i > 0` and each refined axis is within a factor 2 of
-its moment estimate (it is exact for points on an ellipsoid, and the guard
-keeps the moment estimate for partial or noisy views where it is not).
-
-Degenerate clouds are a documented result, never NaN: if the cloud is
-coplanar (collinear), the smallest (two smallest) semi-axes are set to
-`minimum_axis_ratio` times the largest, and `degeneracy` says so.
-
-\tparam PointRange a model of `ConstRange` whose value type is the key type of the point map.
-
-\param points the input points
-\param np an optional sequence of named parameters:
-  - `point_map` (CGAL::parameters): property map to `Point_3`; default identity.
-  - `geom_traits` (CGAL::parameters): the kernel; default deduced from the point type.
-  - `refine_axes` (Blended_shapes::parameters): `bool`, default `true`.
-  - `minimum_axis_ratio` (Blended_shapes::parameters): `double` in (0, 1], default `0.01`.
-
-\throws Input_error (see check_points()) if the range is empty, has fewer than
-  `minimum_number_of_points` points, a non-finite point, or all points identical.
-\throws std::invalid_argument if `minimum_axis_ratio` is not in (0, 1].
-*/
-template <class PointRange, class NamedParameters = CGAL::parameters::Default_named_parameters>
-auto initialize_from_moments(const PointRange& points,
-                             const NamedParameters& np = CGAL::parameters::default_values())
+// The ellipsoid of the moments of `points` (see initialize_from_moments()).
+template <class Geom_traits>
+Ellipsoid_fit<Geom_traits> ellipsoid_from_moments(const std::vector<Eigen::Vector3d>& points, bool refine,
+                                                  double min_ratio)
 {
-  using CGAL::parameters::choose_parameter;
-  using CGAL::parameters::get_parameter;
-  typedef internal::Point_range_types<PointRange, NamedParameters> Types;
-  typedef typename Types::Point_3 Point_3;
-  typedef typename Types::Geom_traits Geom_traits;
-
-  const typename Types::Point_map point_map = Types::point_map(np);
-  const bool refine = choose_parameter(get_parameter(np, internal_np::refine_axes), true);
-  const double min_ratio = choose_parameter(get_parameter(np, internal_np::minimum_axis_ratio), 0.01);
-  if(!(min_ratio > 0. && min_ratio <= 1.))
-    throw std::invalid_argument("initialize_from_moments: minimum_axis_ratio must be in (0, 1]");
-
-  check_points(points, point_map);
-
+  typedef typename Geom_traits::Point_3 Point_3;
   // Centroid and covariance, accumulated relative to the first point so that
   // clouds far from the origin (scanner coordinates) lose no precision.
-  auto coords = [&](const auto& item) {
-    const Point_3& p = get(point_map, item);
-    return Eigen::Vector3d(CGAL::to_double(p.x()), CGAL::to_double(p.y()), CGAL::to_double(p.z()));
-  };
-  const Eigen::Vector3d origin = coords(*points.begin());
+  const Eigen::Vector3d origin = points.front();
   Eigen::Vector3d sum = Eigen::Vector3d::Zero();
   std::size_t n = 0;
-  for(const auto& item : points) { sum += coords(item) - origin; ++n; }
+  for(const Eigen::Vector3d& p : points) { sum += p - origin; ++n; }
   const Eigen::Vector3d mean = sum / double(n);
   Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
-  for(const auto& item : points)
+  for(const Eigen::Vector3d& p : points)
   {
-    const Eigen::Vector3d d = coords(item) - origin - mean;
+    const Eigen::Vector3d d = p - origin - mean;
     cov += d * d.transpose();
   }
   cov /= double(n);
@@ -141,9 +92,9 @@ auto initialize_from_moments(const PointRange& points,
   // Third central moments along each direction: their signs orient the axes
   // the same way whatever the pose of the cloud (equivariance).
   Eigen::Vector3d skew = Eigen::Vector3d::Zero();
-  for(const auto& item : points)
+  for(const Eigen::Vector3d& p : points)
   {
-    const Eigen::Vector3d d = eig.eigenvectors().transpose() * (coords(item) - origin - mean);
+    const Eigen::Vector3d d = eig.eigenvectors().transpose() * (p - origin - mean);
     skew += d.cwiseProduct(d).cwiseProduct(d);
   }
   for(int i = 0; i < 3; ++i) // Eigen sorts ascending; we want the largest first
@@ -186,9 +137,9 @@ auto initialize_from_moments(const PointRange& points,
     // min sum (k . y^2 - 1)^2 over the points, y in the principal frame
     Eigen::Matrix3d A = Eigen::Matrix3d::Zero();
     Eigen::Vector3d b = Eigen::Vector3d::Zero();
-    for(const auto& item : points)
+    for(const Eigen::Vector3d& p : points)
     {
-      const Eigen::Vector3d y = R.transpose() * (coords(item) - c);
+      const Eigen::Vector3d y = R.transpose() * (p - c);
       const Eigen::Vector3d y2 = y.cwiseProduct(y);
       A += y2 * y2.transpose();
       b += y2;
@@ -216,6 +167,223 @@ auto initialize_from_moments(const PointRange& points,
   for(double& a : fit.axes)
     a = (std::max)(a, min_ratio * largest);
   return fit;
+}
+
+template <class PointRange, class PointMap>
+std::vector<Eigen::Vector3d> point_coordinates(const PointRange& points, PointMap point_map)
+{
+  std::vector<Eigen::Vector3d> result;
+  for(const auto& item : points)
+  {
+    const auto& p = get(point_map, item);
+    result.emplace_back(CGAL::to_double(p.x()), CGAL::to_double(p.y()), CGAL::to_double(p.z()));
+  }
+  return result;
+}
+
+} // namespace internal
+
+namespace internal {
+
+struct Moment_options
+{
+  bool refine;
+  double minimum_axis_ratio;
+};
+
+// The named parameters of initialize_from_moments().
+template <class NamedParameters>
+Moment_options moment_options(const NamedParameters& np)
+{
+  using CGAL::parameters::choose_parameter;
+  using CGAL::parameters::get_parameter;
+  const Moment_options options{choose_parameter(get_parameter(np, internal_np::refine_axes), true),
+                               choose_parameter(get_parameter(np, internal_np::minimum_axis_ratio), 0.01)};
+  if(!(options.minimum_axis_ratio > 0. && options.minimum_axis_ratio <= 1.))
+    throw std::invalid_argument("initialize_from_moments: minimum_axis_ratio must be in (0, 1]");
+  return options;
+}
+
+} // namespace internal
+
+/*!
+\ingroup PkgBlendedShapeInitialization
+
+Fits the initial ellipsoid to `points` from their central moments (sec. 5.3):
+the centre is the centroid, the axes directions are the eigenvectors of the
+covariance matrix (largest spread first; the first two are oriented so that
+the third central moment along each is positive, which makes the result follow
+any rotation, translation or uniform scaling of the cloud, and the third
+completes a right-handed frame, so R is a rotation; a direction along which the
+cloud is symmetric gets the sign that makes its largest component positive), and
+the semi-axes are `sqrt(3 lambda_i)` (`lambda_i` the eigenvalues), exact for
+points spread uniformly over a sphere.
+
+For non-spherical shapes the moment estimate is biased (about 13 % short on
+the long axis of a 4:1 ellipsoid surface), so by default the semi-axes are
+then refined, with the centre and directions kept, by the linear least-squares
+fit of `sum_i k_i y_i^2 = 1` in the principal frame; the refinement is
+kept only if every `k_i > 0` and each refined axis is within a factor 2 of
+its moment estimate (it is exact for points on an ellipsoid, and the guard
+keeps the moment estimate for partial or noisy views where it is not).
+
+Degenerate clouds are a documented result, never NaN: if the cloud is
+coplanar (collinear), the smallest (two smallest) semi-axes are set to
+`minimum_axis_ratio` times the largest, and `degeneracy` says so.
+
+\tparam PointRange a model of `ConstRange` whose value type is the key type of the point map.
+
+\param points the input points
+\param np an optional sequence of named parameters:
+  - `point_map` (CGAL::parameters): property map to `Point_3`; default identity.
+  - `geom_traits` (CGAL::parameters): the kernel; default deduced from the point type.
+  - `refine_axes` (Blended_shapes::parameters): `bool`, default `true`.
+  - `minimum_axis_ratio` (Blended_shapes::parameters): `double` in (0, 1], default `0.01`.
+
+\throws Input_error (see check_points()) if the range is empty, has fewer than
+  `minimum_number_of_points` points, a non-finite point, or all points identical.
+\throws std::invalid_argument if `minimum_axis_ratio` is not in (0, 1].
+*/
+template <class PointRange, class NamedParameters = CGAL::parameters::Default_named_parameters>
+auto initialize_from_moments(const PointRange& points,
+                             const NamedParameters& np = CGAL::parameters::default_values())
+{
+  typedef internal::Point_range_types<PointRange, NamedParameters> Types;
+  const internal::Moment_options options = internal::moment_options(np);
+  const typename Types::Point_map point_map = Types::point_map(np);
+  check_points(points, point_map);
+  return internal::ellipsoid_from_moments<typename Types::Geom_traits>(
+    internal::point_coordinates(points, point_map), options.refine, options.minimum_axis_ratio);
+}
+
+namespace internal {
+
+// Mean and covariance of the points `kept` of `points`, relative to `origin`
+// (precision far from the origin).
+inline std::pair<Eigen::Vector3d, Eigen::Matrix3d> mean_and_covariance(const std::vector<Eigen::Vector3d>& points,
+                                                                     const std::vector<bool>& kept,
+                                                                     const Eigen::Vector3d& origin)
+{
+  Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+  Eigen::Matrix3d second = Eigen::Matrix3d::Zero();
+  double n = 0.;
+  for(std::size_t i = 0; i < points.size(); ++i)
+    if(kept[i])
+    {
+      const Eigen::Vector3d d = points[i] - origin;
+      sum += d;
+      second += d * d.transpose();
+      n += 1.;
+    }
+  const Eigen::Vector3d mean = sum / n;
+  return {origin + mean, second / n - mean * mean.transpose()};
+}
+
+// The geometric median (Weiszfeld's iteration from the centroid): a centre
+// that half the points, wherever they are, cannot move far, and that follows
+// rotations, translations and scalings of the cloud.
+inline Eigen::Vector3d geometric_median(const std::vector<Eigen::Vector3d>& points)
+{
+  Eigen::Vector3d c = Eigen::Vector3d::Zero();
+  for(const Eigen::Vector3d& p : points) c += p - points.front();
+  c = points.front() + c / double(points.size());
+  for(int iteration = 0; iteration < 100; ++iteration)
+  {
+    Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+    double weights = 0.;
+    for(const Eigen::Vector3d& p : points)
+    {
+      const double d = (p - c).norm();
+      if(d > 0.)
+      {
+        sum += (p - c) / d;
+        weights += 1. / d;
+      }
+    }
+    if(!(weights > 0.))
+      break;
+    const Eigen::Vector3d step = sum / weights;
+    c += step;
+    if(step.norm() <= 1e-12 * (std::sqrt(1. / weights) + c.norm()))
+      break;
+  }
+  return c;
+}
+
+} // namespace internal
+
+/// \ingroup PkgBlendedShapeInitialization
+/// A point is kept by initialize_from_trimmed_moments() if its Mahalanobis
+/// distance is at most this factor times that of a sphere's points,
+/// `sqrt(3)`: with room for boxy superellipsoids, whose corners are
+/// farther (those of a flat box, about 1.53 times).
+constexpr double trimmed_moments_cutoff = 1.75;
+
+/*!
+\ingroup PkgBlendedShapeInitialization
+
+The best-fit ellipsoid of initialize_from_moments() fitted to the points of
+`points` that are not stray: the moments of many stray points spread over
+a box around the object give an ellipsoid the size of the box. The points
+kept are found by iterative trimming:
+
+1. start: the points within twice the median distance `m` of the geometric
+   median `c` (`|p_i - c| <= 2 m`);
+2. repeat with the mean `mu` and covariance `Sigma` of the points kept: keep
+   the points whose Mahalanobis distance
+   `d_i^2 = (p_i - mu)^T Sigma^-1 (p_i - mu)` is at most
+   `3 k^2`, `k` = trimmed_moments_cutoff (points spread over a sphere are all at `d_i^2 = 3`),
+   until the set no longer changes (at most 50 times);
+3. the result is initialize_from_moments() of the points kept.
+
+A cloud without strays keeps every point, and the result is that of
+initialize_from_moments(). Strays inside the ellipsoid of step 2 are kept:
+over a box twice the object's size they make the ellipsoid up to about 20 %
+too large, which the fit with robust weights then corrects.
+`number_of_points` is the number of points kept.
+
+Named parameters, exceptions: as for initialize_from_moments().
+*/
+template <class PointRange, class NamedParameters = CGAL::parameters::Default_named_parameters>
+auto initialize_from_trimmed_moments(const PointRange& points,
+                                     const NamedParameters& np = CGAL::parameters::default_values())
+{
+  typedef internal::Point_range_types<PointRange, NamedParameters> Types;
+  const internal::Moment_options options = internal::moment_options(np);
+  const typename Types::Point_map point_map = Types::point_map(np);
+  check_points(points, point_map);
+  const std::vector<Eigen::Vector3d> all = internal::point_coordinates(points, point_map);
+
+  const Eigen::Vector3d c = internal::geometric_median(all);
+  std::vector<double> distance(all.size());
+  for(std::size_t i = 0; i < all.size(); ++i) distance[i] = (all[i] - c).norm();
+  std::vector<double> sorted = distance;
+  std::nth_element(sorted.begin(), sorted.begin() + std::ptrdiff_t(sorted.size() / 2), sorted.end());
+  const double start_radius = 2. * sorted[sorted.size() / 2];
+  std::vector<bool> kept(all.size());
+  for(std::size_t i = 0; i < all.size(); ++i) kept[i] = distance[i] <= start_radius;
+
+  const double cutoff = 3. * CGAL::square(trimmed_moments_cutoff);
+  for(int iteration = 0; iteration < 50; ++iteration)
+  {
+    const auto [mean, cov] = internal::mean_and_covariance(all, kept, c);
+    // a tiny ridge: flat clouds have a singular covariance
+    const Eigen::Matrix3d inverse = (cov + 1e-12 * cov.trace() * Eigen::Matrix3d::Identity()).inverse();
+    std::vector<bool> next(all.size());
+    for(std::size_t i = 0; i < all.size(); ++i)
+      next[i] = (all[i] - mean).dot(inverse * (all[i] - mean)) <= cutoff;
+    if(next == kept)
+      break;
+    kept = std::move(next);
+  }
+  auto kept_points = [&] {
+    std::vector<Eigen::Vector3d> inliers;
+    for(std::size_t i = 0; i < all.size(); ++i)
+      if(kept[i]) inliers.push_back(all[i]);
+    return inliers.size() < minimum_number_of_points ? all : inliers; // nothing sensible to trim to
+  };
+  return internal::ellipsoid_from_moments<typename Types::Geom_traits>(kept_points(), options.refine,
+                                                                      options.minimum_axis_ratio);
 }
 
 } // namespace Blended_shapes
