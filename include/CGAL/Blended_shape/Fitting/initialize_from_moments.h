@@ -169,9 +169,12 @@ Ellipsoid_fit<Geom_traits> ellipsoid_from_moments(const std::vector<Eigen::Vecto
   return fit;
 }
 
-template <class PointRange, class PointMap>
-std::vector<Eigen::Vector3d> point_coordinates(const PointRange& points, PointMap point_map)
+// The coordinates of the points, checked (check_points()).
+template <class PointRange, class NamedParameters>
+std::vector<Eigen::Vector3d> checked_point_coordinates(const PointRange& points, const NamedParameters& np)
 {
+  const auto point_map = Point_range_types<PointRange, NamedParameters>::point_map(np);
+  check_points(points, point_map);
   std::vector<Eigen::Vector3d> result;
   for(const auto& item : points)
   {
@@ -248,12 +251,10 @@ template <class PointRange, class NamedParameters = CGAL::parameters::Default_na
 auto initialize_from_moments(const PointRange& points,
                              const NamedParameters& np = CGAL::parameters::default_values())
 {
-  typedef internal::Point_range_types<PointRange, NamedParameters> Types;
+  typedef typename internal::Point_range_types<PointRange, NamedParameters>::Geom_traits Geom_traits;
   const internal::Moment_options options = internal::moment_options(np);
-  const typename Types::Point_map point_map = Types::point_map(np);
-  check_points(points, point_map);
-  return internal::ellipsoid_from_moments<typename Types::Geom_traits>(
-    internal::point_coordinates(points, point_map), options.refine, options.minimum_axis_ratio);
+  return internal::ellipsoid_from_moments<Geom_traits>(internal::checked_point_coordinates(points, np),
+                                                      options.refine, options.minimum_axis_ratio);
 }
 
 namespace internal {
@@ -338,8 +339,9 @@ kept are found by iterative trimming:
 
 A cloud without strays keeps every point, and the result is that of
 initialize_from_moments(). Strays inside the ellipsoid of step 2 are kept:
-over a box twice the object's size they make the ellipsoid up to about 20 %
-too large, which the fit with robust weights then corrects.
+over a box twice the object's size they make the ellipsoid too large, most
+along its short axes (up to twice for a flat object), which the fit with
+robust weights then has to correct.
 `number_of_points` is the number of points kept.
 
 Named parameters, exceptions: as for initialize_from_moments().
@@ -348,11 +350,9 @@ template <class PointRange, class NamedParameters = CGAL::parameters::Default_na
 auto initialize_from_trimmed_moments(const PointRange& points,
                                      const NamedParameters& np = CGAL::parameters::default_values())
 {
-  typedef internal::Point_range_types<PointRange, NamedParameters> Types;
+  typedef typename internal::Point_range_types<PointRange, NamedParameters>::Geom_traits Geom_traits;
   const internal::Moment_options options = internal::moment_options(np);
-  const typename Types::Point_map point_map = Types::point_map(np);
-  check_points(points, point_map);
-  const std::vector<Eigen::Vector3d> all = internal::point_coordinates(points, point_map);
+  const std::vector<Eigen::Vector3d> all = internal::checked_point_coordinates(points, np);
 
   const Eigen::Vector3d c = internal::geometric_median(all);
   std::vector<double> distance(all.size());
@@ -382,8 +382,7 @@ auto initialize_from_trimmed_moments(const PointRange& points,
       if(kept[i]) inliers.push_back(all[i]);
     return inliers.size() < minimum_number_of_points ? all : inliers; // nothing sensible to trim to
   };
-  return internal::ellipsoid_from_moments<typename Types::Geom_traits>(kept_points(), options.refine,
-                                                                      options.minimum_axis_ratio);
+  return internal::ellipsoid_from_moments<Geom_traits>(kept_points(), options.refine, options.minimum_axis_ratio);
 }
 
 } // namespace Blended_shapes
