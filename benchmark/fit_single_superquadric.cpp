@@ -17,7 +17,7 @@
 // reported (points, model meshes, AABB tree and the fit together).
 #include "benchmark_util.h"
 
-#include <CGAL/Blended_shape/Fitting/fit_blended_shape.h>
+#include <CGAL/Blended_shape/Fitting/fit_superquadric.h>
 #include <blended_shape_testing/compare_superquadrics.h>
 #include <blended_shape_testing/equivariance.h>
 #include <CGAL/Blended_shape/internal/write_file_atomically.h>
@@ -65,7 +65,7 @@ Fit_outcome fit_one(const Config& c, unsigned int shape_seed)
   double sigma = 0.;
   const auto pts = BS::testing::synthetic_scan(truth, c.points, c.single_view, 0.002, rng, &sigma);
   const std::size_t limit = c.integrator == BS::Integrator::Explicit ? 3000 : 200;
-  const auto r = BS::fit_blended_shape(pts, BS::parameters::integrator(c.integrator).number_of_iterations(limit));
+  const auto r = BS::fit_superquadric(pts, BS::parameters::integrator(c.integrator).number_of_iterations(limit));
   Fit_outcome o;
   o.iterations = r.metrics.iterations;
   o.seconds = r.metrics.seconds;

@@ -3,7 +3,7 @@
 // simulated single-view scans of CAD objects (as the paper's "CAD utility")
 // and of a human body mesh (the mannequin, scanned from the front over a
 // 90 degree field of view), and the bundled real mug scan. Each is fitted
-// with fit_blended_shape() and reported like Figure 18, with the paper's
+// with fit_superquadric() and reported like Figure 18, with the paper's
 // numbers beside ours. Prints Markdown; --csv FILE also writes CSV.
 //
 //   reproduce_paper [--csv FILE] [--markdown FILE]
@@ -11,7 +11,7 @@
 
 #include <CGAL/Blended_shape/Scanning/CAD_objects.h>
 #include <CGAL/Blended_shape/Scanning/Range_scan_simulator.h>
-#include <CGAL/Blended_shape/Fitting/fit_blended_shape.h>
+#include <CGAL/Blended_shape/Fitting/fit_superquadric.h>
 #include <blended_shape_testing/synthetic_scans.h>
 #include <CGAL/Blended_shape/internal/write_file_atomically.h>
 #include <CGAL/Blended_shape/IO/read_points.h>
@@ -148,8 +148,8 @@ int main(int argc, char** argv)
   std::cout << md.str() << std::flush;
   for(const Experiment& e : experiments)
   {
-    const auto r = e.reference ? BS::fit_blended_shape(e.points, BS::parameters::reference_mesh(&*e.reference))
-                               : BS::fit_blended_shape(e.points);
+    const auto r = e.reference ? BS::fit_superquadric(e.points, BS::parameters::reference_mesh(&*e.reference))
+                               : BS::fit_superquadric(e.points);
     const BS::Fit_metrics& m = r.metrics;
     const Paper_row& p = paper[e.paper_row];
     const double diag = BS::testing::bounding_box_diagonal(e.points);

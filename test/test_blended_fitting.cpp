@@ -3,11 +3,12 @@
 // blended model's Jacobians against finite differences, the fitter's forces
 // against brute-force closest points on the analytic surface, the energy at
 // fixed correspondences across steps (both integrators), and the recovery of
-// a body with a part and of a torus-like body with a hole from noisy samples.
+// a body with a part and of a torus-like body with a hole from noisy samples;
+// a fit going on after a split as a new fit would (restructure()).
 #include "test_util.h"
 #include "blended_shape_test_util.h"
 
-#include <CGAL/Blended_shape/Fitting/Blended_shape_fitter.h>
+#include <CGAL/Blended_shape/Fitting/Deformable_model_fitter.h>
 #include <CGAL/Blended_shape/Fitting/Deformable_blended_model.h>
 #include <CGAL/Blended_shape/Fitting/sample_model.h>
 
@@ -202,7 +203,7 @@ void test_forces_against_brute_force(const std::string& name, const Model<K>& m)
 {
   double sigma, diagonal;
   const auto pts = noisy_samples<K>(m, reduced ? 150 : 500, 0.01, 17, sigma, diagonal);
-  BS::Blended_shape_fitter<Model<K>> fitter(pts, m);
+  BS::Deformable_model_fitter<Model<K>> fitter(pts, m);
   const auto forces = fitter.forces();
   const auto dense = BS::sample_model_surface(m, reduced ? 4000 : 20000, 23);
   double worst = 0.;
@@ -269,7 +270,7 @@ void test_energy_decrease(const std::string& name, const Model<K>& truth, BS::In
   const auto pts = noisy_samples<K>(truth, reduced ? 600 : 1500, 0.002, 29, sigma, diagonal);
   BS::Fitting_settings settings;
   settings.integrator = integrator;
-  BS::Blended_shape_fitter<Model<K>> fitter(pts, perturbed(truth, 1.), settings);
+  BS::Deformable_model_fitter<Model<K>> fitter(pts, perturbed(truth, 1.), settings);
   int accepted = 0;
   for(int it = 0; it < (reduced ? 3 : 6); ++it)
   {
@@ -335,7 +336,7 @@ void test_recovery(const std::string& name, const Model<K>& truth, double amount
   double sigma, diagonal;
   const auto pts = noisy_samples<K>(truth, reduced ? 1000 : 3000, 0.002, 31, sigma, diagonal);
   const Model<K> start = perturbed(truth, amount);
-  BS::Blended_shape_fitter<Model<K>> fitter(pts, start);
+  BS::Deformable_model_fitter<Model<K>> fitter(pts, start);
   const double rms_start = std::sqrt(fitter.mean_squared_distance(true));
   const BS::Fitting_status status = fitter.run();
   const double rms = std::sqrt(fitter.mean_squared_distance(true));
@@ -356,6 +357,76 @@ void test_recovery(const std::string& name, const Model<K>& truth, double amount
                                            << " of the diagonal from the truth");
 }
 
+// Whether two fitters are in the same state, as far as their results show:
+// the same parameters and the same energies, bit for bit.
+template <class K>
+bool same_results(const Model<K>& a, const Model<K>& b, const BS::Step_report& ra, const BS::Step_report& rb)
+{
+  const Eigen::VectorXd qa = a.parameters(), qb = b.parameters();
+  return qa.size() == qb.size() && (qa.array() == qb.array()).all() && ra.accepted == rb.accepted &&
+         ra.energy_before == rb.energy_before && ra.energy_after == rb.energy_after &&
+         ra.fixed_energy_after == rb.fixed_energy_after && ra.scaled_force == rb.scaled_force;
+}
+
+// restructure(): a fit of a one-component body split (sec. 4.1) goes on
+// exactly as a fitter constructed anew on the split model would, step for
+// step and through run(); so does the fit back on one component (fewer
+// parameters and charts). A cache sized by the old parameter vector or
+// charts, or state learned on the old model (damping, springs, the subset
+// phase, a pose-only restriction), would crash or make them differ.
+template <class K>
+void test_restructure(const Model<K>& truth)
+{
+  double sigma, diagonal;
+  const auto pts = noisy_samples<K>(truth, reduced ? 600 : 1500, 0.002, 37, sigma, diagonal);
+  BS::Fitting_settings settings;
+  settings.subset_size = 300;
+  settings.maximum_iterations = reduced ? 4 : 8;
+  const Model<K> one(BS::Blended_shape<K>(BS::Superquadric_ellipsoid<K>(1., 0.9, 1.1, 0.8, 1.1)), truth.translation(),
+                     truth.quaternion());
+  BS::Deformable_model_fitter<Model<K>> fitter(pts, one, settings);
+  fitter.use_all_points(false);
+  for(int it = 0; it < 3; ++it)
+    fitter.step();
+  fitter.move_pose_only(true);
+  fitter.step();
+  const Model<K> fitted_one = fitter.model();
+
+  // the southern cap of the root, where the nose is, split off (h = 0)
+  BS::Blended_shape<K> split_shape = fitted_one.shape();
+  split_shape.split(0, 1, Region::make_parameters(0., 0.05, 0.35, 0.33, 0., 0.9, 0.), 0.07);
+  const Model<K> split(split_shape, fitted_one.translation(), fitted_one.quaternion());
+  int mismatches = 0;
+  auto go_on_like_a_new_fitter = [&](const Model<K>& restructured, const char* what) {
+    fitter.restructure(restructured);
+    BS::Deformable_model_fitter<Model<K>> fresh(pts, restructured, settings);
+    BS_CHECK(fitter.chart_meshes().size() == restructured.number_of_charts(),
+             what << ": " << fitter.chart_meshes().size() << " chart meshes");
+    for(int it = 0; it < 3; ++it)
+    {
+      const BS::Step_report a = fitter.step(), b = fresh.step();
+      if(!same_results<K>(fitter.model(), fresh.model(), a, b))
+        ++mismatches;
+      BS_CHECK(same_results<K>(fitter.model(), fresh.model(), a, b), what << ": step " << it << " differs");
+    }
+    BS_CHECK(fitter.forces().size() == pts.size() && fresh.forces().size() == pts.size(), what << ": forces");
+    BS_CHECK(fitter.mean_squared_distance(false) == fresh.mean_squared_distance(false), what << ": subset distance");
+    const BS::Fitting_status a = fitter.run(), b = fresh.run();
+    const Eigen::VectorXd qa = fitter.model().parameters(), qb = fresh.model().parameters();
+    BS_CHECK(a.iterations == b.iterations && a.converged == b.converged && qa.size() == qb.size() &&
+               (qa.array() == qb.array()).all(),
+             what << ": run() differs (" << a.iterations << " and " << b.iterations << " iterations)");
+    BS_CHECK(fitter.mean_squared_distance(true) == fresh.mean_squared_distance(true), what << ": distance");
+  };
+  go_on_like_a_new_fitter(split, "split");
+  // and back to one component (a split undone)
+  BS_CHECK(fitter.model().number_of_parameters() > fitted_one.number_of_parameters(), "the split added no parameters");
+  go_on_like_a_new_fitter(fitted_one, "back to one component");
+  std::cout << "  restructure: " << one.number_of_parameters() << " -> " << split.number_of_parameters() << " -> "
+            << fitted_one.number_of_parameters() << " parameters, " << mismatches
+            << " steps differ from a new fitter's" << std::endl;
+}
+
 template <class K>
 void run(const char* kernel)
 {
@@ -371,6 +442,7 @@ void run(const char* kernel)
   test_energy_decrease<K>("body with hole, Gauss-Newton", hole, BS::Integrator::Gauss_newton);
   test_recovery<K>("body with nose", nose, 1., true);
   test_recovery<K>("body with hole", hole, 0.5, false);
+  test_restructure<K>(nose);
   std::cout << "blended fitting with " << kernel
             << (blended_shape_test::failures() == before ? ": SUCCESS" : ": FAILED") << std::endl;
 }

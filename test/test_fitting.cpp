@@ -2,10 +2,11 @@
 // The physics-based fit (paper sec. 5.1-5.3): AABB closest points against
 // brute force, energy decrease at fixed correspondences for both
 // integrators, recovery of random superellipsoids, equivariance,
-// determinism, abort, and bad input.
+// determinism, abort, bad input, and the settings read from named
+// parameters.
 #include "test_util.h"
 
-#include <CGAL/Blended_shape/Fitting/fit_blended_shape.h>
+#include <CGAL/Blended_shape/Fitting/fit_superquadric.h>
 #include <CGAL/Blended_shape/Primitives/check_primitive.h>
 #include <blended_shape_testing/compare_superquadrics.h>
 #include <blended_shape_testing/equivariance.h>
@@ -112,7 +113,7 @@ void test_energy_decrease(BS::Integrator integrator, std::mt19937_64& rng)
   start.set_parameters(q);
   BS::Fitting_settings s;
   s.integrator = integrator;
-  BS::Blended_shape_fitter<Model<K>> fitter(pts, start, s);
+  BS::Deformable_model_fitter<Model<K>> fitter(pts, start, s);
   fitter.use_all_points(true);
   int accepted = 0;
   for(int it = 0; it < 8; ++it)
@@ -169,7 +170,7 @@ void test_recovery(int full_views, int single_views, std::mt19937_64& rng)
     const Model<K> truth = random_superellipsoid<K>(rng);
     double sigma = 0.;
     const auto pts = scan<K>(truth, reduced ? 1500 : 3000, single, 0.002, rng, &sigma);
-    const auto r = BS::fit_blended_shape(pts);
+    const auto r = BS::fit_superquadric(pts);
     std::ostringstream label;
     label << (single ? "single view" : "full view") << " #" << t << " truth " << truth.shape().parameters().transpose();
     const double noise = sigma / diagonal<K>(pts);
@@ -209,7 +210,7 @@ void test_determinism_and_abort(std::mt19937_64& rng)
   const Model<K> truth = random_superellipsoid<K>(rng);
   const auto pts = scan<K>(truth, cloud_size(6000), true, 0.003, rng);
   const auto np = CGAL::parameters::random_seed(7);
-  const auto a = BS::fit_blended_shape(pts, np), b = BS::fit_blended_shape(pts, np);
+  const auto a = BS::fit_superquadric(pts, np), b = BS::fit_superquadric(pts, np);
   BS_CHECK(a.model.parameters() == b.model.parameters(), "same input and seed: different models");
   BS_CHECK(a.metrics.iterations == b.metrics.iterations && a.metrics.relative_rms == b.metrics.relative_rms,
            "same input and seed: different metrics");
@@ -219,7 +220,7 @@ void test_determinism_and_abort(std::mt19937_64& rng)
     BS_CHECK(f >= 0. && f <= 1., "callback fraction " << f);
     return ++calls < 3;
   };
-  const auto c = BS::fit_blended_shape(pts, CGAL::parameters::callback(stop_at_third));
+  const auto c = BS::fit_superquadric(pts, CGAL::parameters::callback(stop_at_third));
   BS_CHECK(c.metrics.aborted && !c.metrics.converged && calls == 3, "abort: calls " << calls);
   const Eigen::VectorXd q = c.model.parameters();
   bool valid = q.allFinite();
@@ -236,8 +237,8 @@ void test_explicit_integrator(std::mt19937_64& rng)
   const Model<K> truth(BS::Superquadric_ellipsoid<K>(1.5, 1., 0.6), Eigen::Vector3d(1., 2., 3.),
                        Eigen::Vector4d(0.9, 0.1, 0.3, -0.2));
   const auto pts = scan<K>(truth, 2000, false, 0.002, rng);
-  const auto gn = BS::fit_blended_shape(pts);
-  const auto ex = BS::fit_blended_shape(pts, BS::parameters::integrator(BS::Integrator::Explicit).number_of_iterations(2000));
+  const auto gn = BS::fit_superquadric(pts);
+  const auto ex = BS::fit_superquadric(pts, BS::parameters::integrator(BS::Integrator::Explicit).number_of_iterations(2000));
   BS_CHECK(ex.metrics.rms_over_bbox_diagonal <= 1.05 * gn.metrics.rms_over_bbox_diagonal,
            "explicit " << ex.metrics.rms_over_bbox_diagonal << " vs implicit " << gn.metrics.rms_over_bbox_diagonal);
   BS_CHECK(ex.metrics.iterations > gn.metrics.iterations,
@@ -249,7 +250,7 @@ void test_bad_input()
 {
   typedef typename K::Point_3 Point_3;
   auto code_of = [](const std::vector<Point_3>& pts) {
-    try { BS::fit_blended_shape(pts); }
+    try { BS::fit_superquadric(pts); }
     catch(const BS::Input_error& e) { return int(e.code()); }
     return -1;
   };
@@ -264,17 +265,49 @@ void test_bad_input()
   std::vector<Point_3> ok;
   for(int i = 0; i < 100; ++i) ok.emplace_back(std::cos(i), std::sin(i), 0.1 * (i % 7));
   int thrown = 0;
-  try { BS::fit_blended_shape(ok, BS::parameters::mesh_resolution(1)); } catch(const std::invalid_argument&) { ++thrown; }
-  try { BS::fit_blended_shape(ok, CGAL::parameters::number_of_iterations(0)); } catch(const std::invalid_argument&) { ++thrown; }
-  try { BS::fit_blended_shape(ok, BS::parameters::energy_tolerance(-1.)); } catch(const std::invalid_argument&) { ++thrown; }
+  try { BS::fit_superquadric(ok, BS::parameters::mesh_resolution(1)); } catch(const std::invalid_argument&) { ++thrown; }
+  try { BS::fit_superquadric(ok, CGAL::parameters::number_of_iterations(0)); } catch(const std::invalid_argument&) { ++thrown; }
+  try { BS::fit_superquadric(ok, BS::parameters::energy_tolerance(-1.)); } catch(const std::invalid_argument&) { ++thrown; }
   BS_CHECK(thrown == 3, "invalid settings accepted: " << 3 - thrown);
   // A flat cloud is a documented result, never NaN.
   std::vector<Point_3> flat;
   for(int i = 0; i < 200; ++i) flat.emplace_back(i % 20, i / 20, 0.);
-  const auto r = BS::fit_blended_shape(flat);
+  const auto r = BS::fit_superquadric(flat);
   BS_CHECK(r.model.parameters().allFinite() && std::isfinite(r.metrics.rms), "flat cloud");
 }
 
+
+// settings_from_named_parameters(): no parameter gives the defaults of
+// Fitting_settings, and each named parameter reaches its member.
+void test_settings_from_named_parameters()
+{
+  namespace BSP = BS::parameters;
+  const BS::Fitting_settings d, none = BS::settings_from_named_parameters();
+  BS_CHECK(none.integrator == d.integrator && none.maximum_iterations == d.maximum_iterations &&
+             none.energy_tolerance == d.energy_tolerance && none.force_tolerance == d.force_tolerance &&
+             none.steady_iterations == d.steady_iterations && none.mesh_resolution == d.mesh_resolution &&
+             none.projection_iterations == d.projection_iterations && none.subset_size == d.subset_size &&
+             none.random_seed == d.random_seed && none.rigid_first == d.rigid_first &&
+             none.rigid_iterations == d.rigid_iterations && none.robust_weighting == d.robust_weighting &&
+             none.maximum_size_factor == d.maximum_size_factor &&
+             none.placement_stiffness == d.placement_stiffness && none.maximum_running_time == d.maximum_running_time,
+           "settings without named parameters differ from the defaults");
+  const BS::Fitting_settings s = BS::settings_from_named_parameters(
+    BSP::integrator(BS::Integrator::Explicit, BSP::energy_tolerance(1e-7, BSP::force_tolerance(1e-3,
+    BSP::steady_iterations(std::size_t(3), BSP::mesh_resolution(7, BSP::projection_iterations(9,
+    BSP::subset_size(std::size_t(123), BSP::rigid_first(true, BSP::rigid_iterations(std::size_t(4),
+    BSP::robust_weighting(BS::Robust_weighting::Cauchy, BSP::maximum_size_factor(2.5,
+    BSP::placement_stiffness(0.5))))))))))))
+      .number_of_iterations(std::size_t(77))
+      .random_seed(5u)
+      .maximum_running_time(3.));
+  BS_CHECK(s.integrator == BS::Integrator::Explicit && s.maximum_iterations == 77 && s.energy_tolerance == 1e-7 &&
+             s.force_tolerance == 1e-3 && s.steady_iterations == 3 && s.mesh_resolution == 7 &&
+             s.projection_iterations == 9 && s.subset_size == 123 && s.random_seed == 5 && s.rigid_first &&
+             s.rigid_iterations == 4 && s.robust_weighting == BS::Robust_weighting::Cauchy &&
+             s.maximum_size_factor == 2.5 && s.placement_stiffness == 0.5 && s.maximum_running_time == 3.,
+           "a named parameter did not reach its setting");
+}
 
 template <class K>
 void run(const char* kernel, bool full)
@@ -299,6 +332,7 @@ void run(const char* kernel, bool full)
 
 int main()
 {
+  test_settings_from_named_parameters();
   run<CGAL::Exact_predicates_inexact_constructions_kernel>("Epick", true);
   run<CGAL::Simple_cartesian<double>>("Simple_cartesian<double>", false);
   blended_shape_test::report("test_fitting");

@@ -2,7 +2,7 @@
 // blended_fit: fit a model to a point cloud and report it as JSON.
 #include "internal/command_line.h"
 
-#include <CGAL/Blended_shape/Fitting/fit_blended_shape.h>
+#include <CGAL/Blended_shape/Fitting/fit_superquadric.h>
 #include <CGAL/Blended_shape/internal/write_file_atomically.h>
 #include <CGAL/Blended_shape/IO/read_points.h>
 
@@ -220,8 +220,8 @@ int main(int argc, char** argv)
                 BS::parameters::integrator(explicit_integrator ? BS::Integrator::Explicit : BS::Integrator::Gauss_newton))
                 .number_of_iterations(iterations)
                 .random_seed(seed);
-    const Result result = quiet ? BS::fit_blended_shape(points, np.visitor(Silent()))
-                                : BS::fit_blended_shape(points, np.visitor(Progress()));
+    const Result result = quiet ? BS::fit_superquadric(points, np.visitor(Silent()))
+                                : BS::fit_superquadric(points, np.visitor(Progress()));
 
     // Everything is formatted before anything is written: no half outputs.
     std::ostringstream summary;

@@ -3,8 +3,8 @@
 \ingroup PkgBlendedShapeConcepts
 \cgalConcept
 
-The progress hooks of a fit: `CGAL::Blended_shapes::Blended_shape_fitter::run()`
-and `CGAL::Blended_shapes::fit_blended_shape()` (named parameter `visitor`)
+The progress hooks of a fit: `CGAL::Blended_shapes::Deformable_model_fitter::run()`
+and `CGAL::Blended_shapes::fit_superquadric()` (named parameter `visitor`)
 call them as the fit goes.
 
 The easiest model is a class derived from
@@ -14,13 +14,14 @@ template and calls the hooks of the visitor's own type). Later releases will
 add hooks for splits and holes, with empty defaults in
 `Default_fitting_visitor`, so deriving from it keeps a visitor compiling.
 
-`fit_blended_shape()` takes the visitor by value (named parameters are copied):
+`fit_superquadric()` takes the visitor by value (named parameters are copied):
 a visitor that collects data should hold a pointer or a reference to where
-the data goes. With its default `try_all_axes = true`, `fit_blended_shape()`
+the data goes. With its default `try_all_axes = true`, `fit_superquadric()`
 runs several fits in a row: three short ones (one per choice of the
 primitive's `z` axis, each ending with the `Subset` phase), the full one, then
 short fits of its similar superquadrics and full fits of those that come out
-clearly closer (see the manual); the iteration numbers start from 0 in each.
+clearly closer (`CGAL::Blended_shapes::Superquadric_multistart_search`, see
+the manual); the iteration numbers start from 0 in each.
 
 \cgalHasModelsBegin
 \cgalHasModels{CGAL::Blended_shapes::Default_fitting_visitor}

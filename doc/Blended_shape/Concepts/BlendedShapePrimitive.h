@@ -11,7 +11,7 @@ that together cover the surface.
 
 A primitive is placed in space by `CGAL::Blended_shapes::Deformable_model`
 (`x(u) = c + R s(u)`, eq. 5), tessellated by `CGAL::Blended_shapes::Chart_mesh`
-and fitted by `CGAL::Blended_shapes::Blended_shape_fitter`; a model of this
+and fitted by `CGAL::Blended_shapes::Deformable_model_fitter`; a model of this
 concept only describes the shape in its own frame.
 
 <b>Charts.</b> Each chart `c` in `[0, number_of_charts())` has a domain

@@ -3,11 +3,14 @@
 \ingroup PkgBlendedShapeConcepts
 \cgalConcept
 
-A shape model that `CGAL::Blended_shapes::Blended_shape_fitter` can fit
+A shape model that `CGAL::Blended_shapes::Deformable_model_fitter` can fit
 (sec. 5.1): a map `x(u; q)` from chart points `u` to space with a parameter
 vector `q`, its model Jacobian `L = dx/dq` (eq. 6) and its chart Jacobian
 `dx/du` (for the closest-point projections), on charts that the fitter
 tessellates once (`CGAL::Blended_shapes::Chart_mesh`) and positions by the model.
+The numbers of parameters and charts are those of the model's structure;
+when it changes (a split, say), the fitter is told by
+`Deformable_model_fitter::restructure()` and tessellates the charts anew.
 
 Parameters: the fitter keeps them within their bounds (shape lengths also
 under a multiple of the data's size), and a parameter whose Jacobian column

@@ -15,8 +15,8 @@
   or takes an existing pack as its second argument:
 
     namespace BSP = CGAL::Blended_shapes::parameters;
-    fit_blended_shape(points, BSP::integrator(Integrator::Explicit).number_of_iterations(500));
-    fit_blended_shape(points, BSP::refine_axes(false, CGAL::parameters::point_map(pm)));
+    fit_superquadric(points, BSP::integrator(Integrator::Explicit).number_of_iterations(500));
+    fit_superquadric(points, BSP::refine_axes(false, CGAL::parameters::point_map(pm)));
 */
 
 namespace CGAL {
@@ -24,7 +24,9 @@ namespace Blended_shapes {
 namespace internal_np {
 
 #define CGAL_BLENDED_SHAPE_PARAMETER(NAME) enum NAME##_t { NAME };
+#define CGAL_BLENDED_SHAPE_FITTING_SETTING(NAME) CGAL_BLENDED_SHAPE_PARAMETER(NAME)
 #include <CGAL/Blended_shape/internal/parameter_names.h>
+#undef CGAL_BLENDED_SHAPE_FITTING_SETTING
 #undef CGAL_BLENDED_SHAPE_PARAMETER
 
 } // namespace internal_np
@@ -45,7 +47,9 @@ namespace parameters {
     return CGAL::Named_function_parameters<T, internal_np::NAME##_t,                  \
              CGAL::Named_function_parameters<NP_T, NP_Tag, NP_Base>>(value, pack);    \
   }
+#define CGAL_BLENDED_SHAPE_FITTING_SETTING(NAME) CGAL_BLENDED_SHAPE_PARAMETER(NAME)
 #include <CGAL/Blended_shape/internal/parameter_names.h>
+#undef CGAL_BLENDED_SHAPE_FITTING_SETTING
 #undef CGAL_BLENDED_SHAPE_PARAMETER
 
 } // namespace parameters

@@ -2,7 +2,7 @@
 #ifndef BLENDED_SHAPE_TESTING_EQUIVARIANCE_H
 #define BLENDED_SHAPE_TESTING_EQUIVARIANCE_H
 
-#include <CGAL/Blended_shape/Fitting/fit_blended_shape.h>
+#include <CGAL/Blended_shape/Fitting/fit_superquadric.h>
 #include <blended_shape_testing/compare_superquadrics.h>
 #include <CGAL/Blended_shape/internal/quaternion.h>
 #include <blended_shape_testing/synthetic_scans.h>
@@ -19,7 +19,7 @@ namespace CGAL {
 namespace Blended_shapes {
 namespace testing {
 
-// How far fit_blended_shape() of a cloud and of its copy moved by a random
+// How far fit_superquadric() of a cloud and of its copy moved by a random
 // similarity (rotation, translation of about 10, scale 3.7) are apart. For
 // tests and benchmarks.
 struct Equivariance_gap
@@ -46,7 +46,7 @@ Equivariance_gap equivariance_gap(const std::vector<Point_3>& points, RandomEngi
   std::vector<Point_3> moved;
   for(const Point_3& p : points)
     moved.push_back(T(p));
-  const auto a = fit_blended_shape(points), b = fit_blended_shape(moved);
+  const auto a = fit_superquadric(points), b = fit_superquadric(moved);
   Equivariance_gap gap;
   for(std::size_t j = 0; j < 3; ++j)
     gap.relative_rms[j] = std::abs(a.metrics.relative_rms[j] - b.metrics.relative_rms[j]) / a.metrics.relative_rms[j];

@@ -29,7 +29,7 @@ is `[ I | (dR/dq_theta) s | R ds/dq_s ]`, sparse by component: a point
 depends only on the components and blends that reach it (point_and_jacobian()
 fills the others with zeros; point_and_sparse_jacobian() leaves them out).
 
-It has the interface Blended_shape_fitter asks of a model, so a blended
+It has the interface Deformable_model_fitter asks of a model, so a blended
 shape of fixed structure is fitted the same way as a single superquadric
 (Deformable_model). Its charts are those of all the components, numbered in
 order: chart `g` of the model is chart `local_chart(g)` of component
@@ -116,12 +116,7 @@ public:
   }
 
   /// The parameter vector `q` (the quaternion is stored normalized).
-  Eigen::VectorXd parameters() const
-  {
-    Eigen::VectorXd q(static_cast<Eigen::Index>(number_of_parameters()));
-    q << m_pose.c, m_pose.quaternion, m_shape.parameters();
-    return q;
-  }
+  Eigen::VectorXd parameters() const { return m_pose.model_parameters(m_shape.parameters()); }
 
   /// \throws std::invalid_argument on a wrong size, a zero or non-finite
   ///         quaternion, or shape parameters Blended_shape::set_parameters()
@@ -129,13 +124,9 @@ public:
   ///         would leave their charts or meet); the model is then unchanged.
   void set_parameters(const Eigen::VectorXd& q)
   {
-    if(q.size() != Eigen::Index(number_of_parameters()))
-      throw std::invalid_argument("Deformable_blended_model: parameter vector of size " + std::to_string(q.size()) +
-                                  ", expected " + std::to_string(number_of_parameters()));
-    internal::Rigid_pose pose = m_pose;
-    pose.set(q.template head<3>(), q.template segment<4>(3), "Deformable_blended_model");
-    m_shape.set_parameters(q.tail(q.size() - number_of_pose_parameters)); // unchanged if it throws
-    m_pose = pose;
+    m_pose.set_model_parameters(
+      q, number_of_parameters(), [&](const auto& shape_q) { m_shape.set_parameters(shape_q); },
+      "Deformable_blended_model");
   }
   /// @}
 

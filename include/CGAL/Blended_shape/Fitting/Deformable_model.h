@@ -107,24 +107,14 @@ public:
   bool is_placement_parameter(std::size_t) const { return false; }
 
   /// The parameter vector `q` (the quaternion is stored normalized).
-  Eigen::VectorXd parameters() const
-  {
-    Eigen::VectorXd q(number_of_parameters());
-    q << m_pose.c, m_pose.quaternion, m_shape.parameters();
-    return q;
-  }
+  Eigen::VectorXd parameters() const { return m_pose.model_parameters(m_shape.parameters()); }
 
   /// \throws std::invalid_argument if a shape parameter is out of bounds or
   /// the quaternion is zero or not finite.
   void set_parameters(const Eigen::VectorXd& q)
   {
-    if(q.size() != Eigen::Index(number_of_parameters()))
-      throw std::invalid_argument("Deformable_model: parameter vector of size " + std::to_string(q.size()) +
-                                  ", expected " + std::to_string(number_of_parameters()));
-    internal::Rigid_pose pose = m_pose;
-    pose.set(q.template head<3>(), q.template segment<4>(3), "Deformable_model");
-    m_shape.set_parameters(q.template tail<number_of_shape_parameters>());
-    m_pose = pose;
+    m_pose.set_model_parameters(
+      q, number_of_parameters(), [&](const auto& shape_q) { m_shape.set_parameters(shape_q); }, "Deformable_model");
   }
 
   /// @}

@@ -8,7 +8,7 @@ namespace CGAL {
 namespace Blended_shapes {
 
 /// \ingroup PkgBlendedShapeFitting
-/// The stages of a fit, in order (see Blended_shape_fitter::run()).
+/// The stages of a fit, in order (see Deformable_model_fitter::run()).
 enum class Fitting_phase
 {
   Rigid,          ///< only translation and rotation move (parameter scheduling)

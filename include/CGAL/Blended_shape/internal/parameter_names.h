@@ -1,17 +1,23 @@
 // SPDX-License-Identifier: LGPL-3.0-or-later
 // The package-specific named parameters (X-macro list; no include guard on purpose).
+// CGAL_BLENDED_SHAPE_FITTING_SETTING(NAME): a named parameter that sets the
+// member NAME of Fitting_settings (see settings_from_named_parameters()).
 // Initialization (initialize_from_moments)
 CGAL_BLENDED_SHAPE_PARAMETER(refine_axes)
 CGAL_BLENDED_SHAPE_PARAMETER(minimum_axis_ratio)
-// Fitting (fit_blended_shape)
-CGAL_BLENDED_SHAPE_PARAMETER(integrator)
-CGAL_BLENDED_SHAPE_PARAMETER(energy_tolerance)
-CGAL_BLENDED_SHAPE_PARAMETER(force_tolerance)
-CGAL_BLENDED_SHAPE_PARAMETER(steady_iterations)
-CGAL_BLENDED_SHAPE_PARAMETER(mesh_resolution)
-CGAL_BLENDED_SHAPE_PARAMETER(subset_size)
-CGAL_BLENDED_SHAPE_PARAMETER(rigid_first)
-CGAL_BLENDED_SHAPE_PARAMETER(robust_weighting)
+// Fitting_settings, under the names of its members
+CGAL_BLENDED_SHAPE_FITTING_SETTING(integrator)
+CGAL_BLENDED_SHAPE_FITTING_SETTING(energy_tolerance)
+CGAL_BLENDED_SHAPE_FITTING_SETTING(force_tolerance)
+CGAL_BLENDED_SHAPE_FITTING_SETTING(steady_iterations)
+CGAL_BLENDED_SHAPE_FITTING_SETTING(mesh_resolution)
+CGAL_BLENDED_SHAPE_FITTING_SETTING(projection_iterations)
+CGAL_BLENDED_SHAPE_FITTING_SETTING(subset_size)
+CGAL_BLENDED_SHAPE_FITTING_SETTING(rigid_first)
+CGAL_BLENDED_SHAPE_FITTING_SETTING(rigid_iterations)
+CGAL_BLENDED_SHAPE_FITTING_SETTING(robust_weighting)
+CGAL_BLENDED_SHAPE_FITTING_SETTING(maximum_size_factor)
+CGAL_BLENDED_SHAPE_FITTING_SETTING(placement_stiffness)
+// fit_superquadric() alone
 CGAL_BLENDED_SHAPE_PARAMETER(reference_mesh)
 CGAL_BLENDED_SHAPE_PARAMETER(try_all_axes)
-CGAL_BLENDED_SHAPE_PARAMETER(maximum_size_factor)

@@ -53,6 +53,32 @@ struct Rigid_pose
 
   Eigen::Vector3d place(const Eigen::Vector3d& s) const { return c + R * s; }
 
+  // A model's parameter vector: this pose's 7 parameters, then the shape's.
+  template <class ShapeParameters>
+  Eigen::VectorXd model_parameters(const ShapeParameters& shape_parameters) const
+  {
+    Eigen::VectorXd q(static_cast<Eigen::Index>(number_of_parameters + shape_parameters.size()));
+    q << c, quaternion, shape_parameters;
+    return q;
+  }
+
+  // Sets this pose from the head of a model's parameter vector `q` and the
+  // shape from its tail through `set_shape_parameters`; unchanged if that
+  // throws.
+  // \throws std::invalid_argument (naming `who`) if `q` is not of `size`, or see set().
+  template <class SetShapeParameters>
+  void set_model_parameters(const Eigen::VectorXd& q, std::size_t size, SetShapeParameters&& set_shape_parameters,
+                            const char* who)
+  {
+    if(q.size() != Eigen::Index(size))
+      throw std::invalid_argument(std::string(who) + ": parameter vector of size " + std::to_string(q.size()) +
+                                  ", expected " + std::to_string(size));
+    Rigid_pose pose = *this;
+    pose.set(q.template head<3>(), q.template segment<4>(3), who);
+    set_shape_parameters(q.tail(q.size() - number_of_parameters));
+    *this = pose;
+  }
+
   // The pose's 7 Jacobian columns at the shape point s.
   template <class Block>
   void jacobian(const Eigen::Vector3d& s, Block&& columns) const

@@ -1,9 +1,10 @@
 // SPDX-License-Identifier: LGPL-3.0-or-later
-#ifndef CGAL_BLENDED_SHAPE_FITTING_BLENDED_SHAPE_FITTER_H
-#define CGAL_BLENDED_SHAPE_FITTING_BLENDED_SHAPE_FITTER_H
+#ifndef CGAL_BLENDED_SHAPE_FITTING_DEFORMABLE_MODEL_FITTER_H
+#define CGAL_BLENDED_SHAPE_FITTING_DEFORMABLE_MODEL_FITTER_H
 
 #include <CGAL/Blended_shape/Primitives/Chart_mesh.h>
 #include <CGAL/Blended_shape/Fitting/Closest_point_locator.h>
+#include <CGAL/Blended_shape/Fitting/Fitting_settings.h>
 #include <CGAL/Blended_shape/Fitting/Fitting_visitor.h>
 #include <CGAL/Blended_shape/IO/check_points.h>
 #include <CGAL/Blended_shape/internal/Parameter_table.h>
@@ -26,65 +27,6 @@
 
 namespace CGAL {
 namespace Blended_shapes {
-
-/// \ingroup PkgBlendedShapeFitting
-/// How the dynamics `dq/dt = f_q` (eq. 7) are integrated.
-enum class Integrator
-{
-  /// The paper's explicit first-order dynamics: `q <- q + dt f_q` with
-  /// `dt = 1 / lambda_max(J^T J)`, the largest step that is stable for the
-  /// linearized dynamics, halved until the step is accepted (see Blended_shape_fitter::step()).
-  Explicit,
-  /// An implicit (damped Gauss-Newton, Levenberg-Marquardt) step of the same dynamics with the
-  /// same correspondences: `(J^T J + lambda diag(J^T J)) dq = J^T r`.
-  /// Same rest states, far fewer iterations. The default.
-  Gauss_newton
-};
-
-/// \ingroup PkgBlendedShapeFitting
-/// Optional down-weighting of far points (stray points of real scans).
-enum class Robust_weighting
-{
-  None,  ///< every point pulls with weight 1 (the paper)
-  /// Cauchy weights `w_i = 1 / (1 + (r_i / c)^2)`, recomputed every iteration from the
-  /// distances `r_i` to the model, with `c = 2.385 * 1.4826 * median(r_i)`.
-  Cauchy
-};
-
-/// \ingroup PkgBlendedShapeFitting
-/// Everything that steers a fit. The free function fit_blended_shape() sets
-/// these from named parameters.
-struct Fitting_settings
-{
-  Integrator integrator = Integrator::Gauss_newton; ///< the integration scheme
-  std::size_t maximum_iterations = 100;   ///< iterations over all phases
-  double energy_tolerance = 1e-10;        ///< relative energy decrease of one step
-  double force_tolerance = 1e-6;          ///< largest scaled parameter force, see Step_report::scaled_force
-  std::size_t steady_iterations = 2;      ///< consecutive steps under both tolerances
-  int mesh_resolution = 10;               ///< chart tessellation (rings from pole to equator)
-  int projection_iterations = 20;         ///< at most this many Gauss-Newton steps from a start to the closest point on the surface
-  std::size_t subset_size = 4000;         ///< points used before the all-points phase (0: all from the start)
-  unsigned int random_seed = 0;           ///< chooses the subset
-  bool rigid_first = false;               ///< parameter scheduling: translation and rotation alone first
-  std::size_t rigid_iterations = 5;       ///< at most this many rigid-only steps
-  Robust_weighting robust_weighting = Robust_weighting::None; ///< weighting of far points
-  /// Shape lengths (Parameter_kind::Length, e.g. semi-axes) are kept at most this
-  /// factor times the diameter of the points about their centroid (twice the
-  /// largest distance to it; unlike a bounding box, it does not depend on the
-  /// orientation of the cloud): with one view of an object nothing else stops
-  /// the model from growing where there is no data.
-  double maximum_size_factor = 1.;
-  /// The loose spring of sec. 3.5 that holds the placement of each added
-  /// component of a blended model (relative to its parent) to where it was
-  /// when the fit started: its stiffness per parameter is this fraction of
-  /// the mean stiffness the data give that placement's translation or
-  /// quaternion at the first step. It keeps the join good where the data
-  /// leave a placement free (a hole turning about its axis, a part sliding
-  /// along its base) and biases the rest by about this fraction of the
-  /// distance moved. 0: no spring.
-  double placement_stiffness = 0.01;
-  double maximum_running_time = HUGE_VAL; ///< seconds
-};
 
 /// \ingroup PkgBlendedShapeFitting
 /// What one iteration did.
@@ -172,7 +114,7 @@ points until steady state: the relative energy decrease of a step is below
   primitive) or Deformable_blended_model (a blended shape of fixed structure).
 */
 template <class Model>
-class Blended_shape_fitter
+class Deformable_model_fitter
 {
 public:
   typedef typename Model::Geom_traits Geom_traits;  ///< the kernel
@@ -185,44 +127,16 @@ public:
   /// \throws Input_error if the points are unusable (see check_points()).
   /// \throws std::invalid_argument on invalid settings.
   template <class PointRange, class PointMap = CGAL::Identity_property_map<Point_3>>
-  Blended_shape_fitter(const PointRange& points, const Model& initial_model,
-                       const Fitting_settings& settings = Fitting_settings(),
-                       PointMap point_map = PointMap())
+  Deformable_model_fitter(const PointRange& points, const Model& initial_model,
+                          const Fitting_settings& settings = Fitting_settings(),
+                          PointMap point_map = PointMap())
     : m_model(initial_model), m_settings(settings)
   {
     check_points(points, point_map);
-    if(settings.mesh_resolution < 2 || settings.maximum_iterations == 0 || settings.steady_iterations == 0 ||
-       !(settings.energy_tolerance >= 0.) || !(settings.force_tolerance >= 0.) ||
-       !(settings.maximum_size_factor > 0.) || !(settings.placement_stiffness >= 0.) ||
-       !std::isfinite(settings.placement_stiffness) || settings.projection_iterations < 1 ||
-       !(settings.maximum_running_time > 0.))
-      throw std::invalid_argument("Blended_shape_fitter: invalid settings (mesh_resolution >= 2, "
-                                  "maximum_iterations >= 1, steady_iterations >= 1, projection_iterations >= 1, "
-                                  "tolerances >= 0, maximum_size_factor > 0, a finite placement_stiffness >= 0 and "
-                                  "maximum_running_time > 0 are required)");
-    CGAL::Bbox_3 box;
-    for(const auto& item : points)
-    {
-      const Point_3& p = get(point_map, item);
-      m_points.emplace_back(CGAL::to_double(p.x()), CGAL::to_double(p.y()), CGAL::to_double(p.z()));
-      box += p.bbox();
-    }
-    m_diagonal = std::sqrt(CGAL::square(box.xmax() - box.xmin()) + CGAL::square(box.ymax() - box.ymin()) +
-                           CGAL::square(box.zmax() - box.zmin()));
-    Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
-    for(const Eigen::Vector3d& p : m_points) centroid += p;
-    centroid /= double(m_points.size());
-    for(const Eigen::Vector3d& p : m_points) m_diameter = (std::max)(m_diameter, 2. * (p - centroid).norm());
-    m_charts.reserve(m_model.number_of_charts()); // the locator keeps pointers to them
-    for(std::size_t c = 0; c < m_model.number_of_charts(); ++c)
-      m_charts.emplace_back(c, m_model.chart_domain(c), settings.mesh_resolution);
-    position_meshes(m_model);
-    m_locator = std::make_unique<Closest_point_locator<Geom_traits>>(m_charts);
-    m_locator->set_face_mask(&m_kept_faces);
-    m_tree_outdated = true;
+    check_settings(settings);
+    read_points(points, point_map);
     choose_subset();
-    m_active_parameters.assign(m_model.number_of_parameters(), true);
-    m_rest = m_model.parameters();
+    restructure(initial_model); // what depends on the model: the same as for a later structure change
   }
 
   /// The current model: that of the last accepted step.
@@ -237,16 +151,62 @@ public:
   const std::vector<Chart_mesh_type>& chart_meshes() const { return m_charts; }
 
   /// Replaces the model (same kind of parameters and charts, e.g. after a
-  /// user edit); the next step recomputes all correspondences.
+  /// user edit); the next step recomputes all correspondences. For a model
+  /// of another structure, see restructure().
   void set_model(const Model& model)
   {
     if(model.number_of_parameters() != m_model.number_of_parameters() ||
        model.number_of_charts() != m_model.number_of_charts())
-      throw std::invalid_argument("Blended_shape_fitter::set_model: the model structure differs");
+      throw std::invalid_argument("Deformable_model_fitter::set_model: the model structure differs");
     m_model = model;
     m_rest = m_model.parameters(); // the springs hold the placements to where they are now
     m_spring.clear();
     refresh();
+  }
+
+  /*!
+  Goes on with `model`, whose structure may differ from the current one's:
+  other numbers of parameters, charts, components or blends, as after
+  Blended_shape::split(), Blended_shape::add_hole() or
+  Blended_shape::remove_component() (sec. 4) applied to the fitted shape.
+
+  Kept: the points, the settings and the subset of the first phase (they do
+  not depend on the model). Rebuilt for `model`: everything sized by its
+  parameter vector or its charts (the chart meshes and their
+  Closest_point_locator, the set of moving parameters, the rest state of the
+  placement springs, whose stiffness the next step sets anew). Reset, as it
+  no longer applies: the correspondences, the Gauss-Newton damping and the
+  explicit step-size reduction (learned on another energy), and the choice
+  of points and parameters (all points, every parameter).
+
+  Afterwards the fitter is in the state of a fitter constructed anew from
+  the same points and settings with `model`: the next steps and run() give
+  the same results, without reading the points again.
+  */
+  void restructure(const Model& model)
+  {
+    m_model = model;
+    m_locator.reset(); // it keeps pointers to the chart meshes, rebuilt here
+    m_charts.clear();
+    m_charts.reserve(m_model.number_of_charts());
+    for(std::size_t c = 0; c < m_model.number_of_charts(); ++c)
+      m_charts.emplace_back(c, m_model.chart_domain(c), m_settings.mesh_resolution);
+    position_meshes(m_model);
+    m_locator = std::make_unique<Closest_point_locator<Geom_traits>>(m_charts);
+    m_locator->set_face_mask(&m_kept_faces);
+    m_tree_outdated = true;
+    m_correspondences = Correspondences();
+    m_scratch = Correspondences();
+    m_correspondences_valid = m_correspondences_all = false;
+    m_start_points.clear();
+    m_start_jacobians.clear();
+    m_start_valid.clear();
+    m_use_all = true;
+    m_active_parameters.assign(m_model.number_of_parameters(), true);
+    m_rest = m_model.parameters();
+    m_spring.clear();
+    m_lambda = initial_damping;
+    m_dt_scale = 1.;
   }
 
   /// Restricts the next steps to all points (`true`) or to the subset.
@@ -281,177 +241,23 @@ public:
     if(!m_correspondences_valid || m_correspondences_all != m_use_all)
       set_correspondences(attach(m_model, active), m_use_all);
     const Correspondences& corr = m_correspondences;
-    const double c = corr.scale;
     const Eigen::VectorXd q = m_model.parameters();
 
-    // The linear system of the dynamics at these correspondences (eq. 7, 8):
-    // per point the force direction in parameter space L^T n (point-to-plane).
-    const std::size_t n = m_model.number_of_parameters();
-    Eigen::MatrixXd H = Eigen::MatrixXd::Zero(Eigen::Index(n), Eigen::Index(n));
-    Eigen::VectorXd g = Eigen::VectorXd::Zero(Eigen::Index(n));
-    Eigen::VectorXd Jn(static_cast<Eigen::Index>(n));
-    std::vector<double> w(active.size());
-    std::vector<Eigen::Index> nonzero;
-    typename Model::Jacobian L;
-    double E0 = 0.;
-    for(std::size_t k = 0; k < active.size(); ++k)
-    {
-      const Point_3 x = m_model.point_and_jacobian(corr.u[k], L);
-      const double r = corr.normal[k].dot(m_points[active[k]] - Eigen::Vector3d(x.x(), x.y(), x.z()));
-      w[k] = weight(corr.distance[k], c);
-      Jn.noalias() = L.transpose() * corr.normal[k];
-      g.noalias() += (w[k] * r) * Jn;
-      E0 += 0.5 * w[k] * r * r;
-      // A point of a blended model depends on the few components and blends
-      // that reach it: the outer product only over its nonzero entries.
-      nonzero.clear();
-      for(Eigen::Index i = 0; i < Jn.size(); ++i)
-        if(Jn[i] != 0.)
-          nonzero.push_back(i);
-      if(2 * nonzero.size() > n)
-        H.template selfadjointView<Eigen::Lower>().rankUpdate(Jn, w[k]);
-      else
-        for(std::size_t a = 0; a < nonzero.size(); ++a)
-        {
-          const double wa = w[k] * Jn[nonzero[a]];
-          for(std::size_t b = 0; b <= a; ++b)
-            H(nonzero[a], nonzero[b]) += wa * Jn[nonzero[b]];
-        }
-    }
-    H.template triangularView<Eigen::Upper>() = H.transpose();
-    // The placement springs (sec. 3.5): E_s = (1/2) sum_i N k_i (q_i - rest_i)^2.
-    if(m_spring.empty())
-      set_springs(H, active.size());
-    const double points_used = double(active.size());
-    for(std::size_t i = 0; i < n; ++i)
-      if(m_spring[i] > 0.)
-      {
-        const Eigen::Index ii = Eigen::Index(i);
-        H(ii, ii) += points_used * m_spring[i];
-        g[ii] -= points_used * m_spring[i] * (q[ii] - m_rest[ii]);
-      }
-    const double spring0 = spring_energy(q, active.size());
-    E0 += spring0;
-    report.energy_before = true_energy(corr.distance, c) + spring0;
-    // Parameters held at a bound by a force pushing past it are frozen for
-    // this step (an active set): a step computed without the bound and then
-    // clamped points the wrong way and only makes the damping grow.
-    std::vector<bool> free_parameter = m_active_parameters;
-    for(std::size_t i = 0; i < n; ++i)
-    {
-      const Eigen::Index ii = Eigen::Index(i);
-      if((g[ii] < 0. && q[ii] <= lower_bound(i)) || (g[ii] > 0. && q[ii] >= upper_bound(i)))
-        free_parameter[i] = false;
-    }
-    for(std::size_t i = 0; i < n; ++i)
-      if(!free_parameter[i])
-      {
-        H.row(Eigen::Index(i)).setZero();
-        H.col(Eigen::Index(i)).setZero();
-        H(Eigen::Index(i), Eigen::Index(i)) = 1.;
-        g[Eigen::Index(i)] = 0.;
-      }
-    report.fixed_energy_before = report.fixed_energy_after = E0;
+    Normal_equations system = assemble_normal_equations(active, corr);
+    const double spring_energy_before = add_placement_springs(system, q, active.size());
+    report.energy_before = true_energy(corr.distance, corr.scale) + spring_energy_before;
+    const std::vector<bool> free_parameter = freeze_parameters_at_bounds(system, q);
+    report.fixed_energy_before = report.fixed_energy_after = system.energy;
     report.energy_after = report.energy_before;
+    report.scaled_force = scaled_force(system, free_parameter, active.size());
 
-    // Scaled force: cosine between the residual and each free parameter direction.
-    const double floor = CGAL::square(1e-12 * m_diameter) * double(active.size());
-    for(std::size_t i = 0; i < n; ++i)
-    {
-      const Eigen::Index ii = Eigen::Index(i);
-      if(!free_parameter[i])
-        continue;
-      const double den = std::sqrt(2. * (E0 + floor) * H(ii, ii));
-      if(den > 0.)
-        report.scaled_force = (std::max)(report.scaled_force, std::abs(g[ii]) / den);
-    }
-
-    bool negligible = false;
-    int sweeps = 0; // closest-point sweeps spent on trials in this step
-    auto try_step = [&](const Eigen::VectorXd& delta) {
-      Eigen::VectorXd q1 = q + delta;
-      for(std::size_t i = 0; i < n; ++i)
-        q1[Eigen::Index(i)] = (std::min)((std::max)(q1[Eigen::Index(i)], lower_bound(i)), upper_bound(i));
-      Model trial = m_model;
-      try
-      {
-        trial.set_parameters(q1);
-      }
-      catch(const std::invalid_argument&)
-      {
-        return false; // e.g. a blending region leaving its chart: a step too far
-      }
-      const double spring1 = spring_energy(q1, active.size());
-      double E1 = spring1;
-      // the points (the same as point()) with their chart Jacobians: the
-      // closest-point sweep starts from these chart points
-      // (where a blended model's regions moved, a chart point may have left
-      // the surface or have another canonical point: then only the point)
-      m_start_points.resize(active.size());
-      m_start_jacobians.resize(active.size());
-      m_start_valid.assign(active.size(), false);
-      for(std::size_t k = 0; k < active.size(); ++k)
-      {
-        Chart_point cu;
-        const Chart_point& u = corr.u[k];
-        m_start_valid[k] = trial.canonical_surface_point(u, cu) && cu.chart == u.chart && cu.x == u.x && cu.y == u.y;
-        const Point_3 x = m_start_valid[k] ? trial.point_and_chart_jacobian(u, m_start_jacobians[k]) : trial.point(u);
-        m_start_points[k] = Eigen::Vector3d(x.x(), x.y(), x.z());
-        E1 += 0.5 * w[k] * CGAL::square(corr.normal[k].dot(m_points[active[k]] - m_start_points[k]));
-      }
-      if(!(E1 <= E0))
-        return false;
-      if(E0 - E1 <= m_settings.energy_tolerance * E0)
-      {
-        negligible = true; // a rest state: not worth a sweep, and the model stays put
-        return false;
-      }
-      if(++sweeps > 2)
-        return false;
-      Correspondences moved = attach(trial, active, &corr, true);
-      const double F1 = true_energy(moved.distance, c) + spring1;
-      if(!(F1 <= report.energy_before))
-        return false;
-      m_model = trial;
-      set_correspondences(std::move(moved), m_use_all);
-      report.energy_after = F1;
-      report.fixed_energy_after = E1;
-      report.accepted = true;
-      return true;
-    };
+    Step_trials trials{active, corr, q, system};
     if(m_settings.integrator == Integrator::Gauss_newton)
-    {
-      const Eigen::VectorXd diag = H.diagonal();
-      const double ridge = 1e-12 * (diag.sum() / double(n) + 1e-300);
-      for(int attempt = 0; attempt < 8 && !report.accepted && !negligible && sweeps <= 2; ++attempt)
-      {
-        Eigen::MatrixXd A = H;
-        A.diagonal() += m_lambda * diag + Eigen::VectorXd::Constant(Eigen::Index(n), ridge);
-        const Eigen::VectorXd delta = A.ldlt().solve(g);
-        if(delta.allFinite() && try_step(delta))
-          m_lambda = (std::max)(m_lambda / 3., 1e-9);
-        else if(!negligible) // at a rest state the damping is not to blame: it would
-          m_lambda = (std::min)(m_lambda * 8., 1e12); // only slow down the next phase's first steps
-      }
-    }
+      damped_gauss_newton_step(trials, report);
     else
-    {
-      // dt = 1 / lambda_max(J^T J): stable for the linearized dynamics q' = f_q;
-      // times a reduction that persists between steps (halved on failure,
-      // grown back on success) where the nonlinearity needs shorter steps.
-      const double lmax =
-        Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(H, Eigen::EigenvaluesOnly).eigenvalues().maxCoeff();
-      const double dt = (lmax > 0.) ? 1. / lmax : 0.;
-      for(int attempt = 0; attempt < 12 && !report.accepted && !negligible && sweeps <= 2 && dt > 0.; ++attempt)
-      {
-        if(try_step(m_dt_scale * dt * g))
-          m_dt_scale = (std::min)(1., 1.5 * m_dt_scale);
-        else
-          m_dt_scale *= 0.5;
-      }
-    }
+      explicit_step(trials, report);
     report.stalled = !report.accepted &&
-                     (negligible || m_lambda >= 1e10 || m_dt_scale <= 1e-8 || !(report.energy_before > 0.));
+                     (trials.negligible || m_lambda >= 1e10 || m_dt_scale <= 1e-8 || !(report.energy_before > 0.));
     if(!report.accepted)
       position_meshes(m_model); // a rejected trial left the meshes where it was
     return report;
@@ -472,18 +278,10 @@ public:
   {
     const auto start = std::chrono::steady_clock::now();
     Fitting_status status;
-    const bool subset = m_subset.size() < m_all.size();
-    Fitting_phase phase = m_settings.rigid_first ? Fitting_phase::Rigid
-                                                 : (subset ? Fitting_phase::Subset : Fitting_phase::All_points);
+    Fitting_phase phase = first_phase();
     auto enter = [&](Fitting_phase p) {
       phase = p;
-      move_pose_only(p == Fitting_phase::Rigid);
-      use_all_points(p == Fitting_phase::All_points || (p == Fitting_phase::Rigid && !subset));
-      // A phase starts undamped: the damping that ended the last one (grown by
-      // the failed steps of its rest state) says nothing about the new energy,
-      // and would only slow the new phase's first steps down.
-      m_lambda = (std::min)(m_lambda, initial_damping);
-      m_dt_scale = 1.;
+      enter_phase(p);
       visitor.on_phase(p, status.iterations);
     };
     enter(phase);
@@ -506,10 +304,7 @@ public:
       ++status.iterations;
       ++in_phase;
       visitor.on_iteration(status.iterations, r.energy_after, r.points_used);
-      const double decrease = (r.energy_before - r.energy_after) / (std::max)(r.energy_before, 1e-300);
-      const bool at_rest = r.stalled || (r.accepted && decrease <= m_settings.energy_tolerance &&
-                                         r.scaled_force <= m_settings.force_tolerance);
-      steady = at_rest ? steady + 1 : 0;
+      steady = is_at_rest(r) ? steady + 1 : 0;
       const bool phase_done = steady >= m_settings.steady_iterations ||
                               (phase == Fitting_phase::Rigid && in_phase >= m_settings.rigid_iterations);
       if(!phase_done)
@@ -518,10 +313,8 @@ public:
       in_phase = 0;
       if(phase != Fitting_phase::All_points && phase == last_phase)
         break;
-      if(phase == Fitting_phase::Rigid)
-        enter(subset ? Fitting_phase::Subset : Fitting_phase::All_points);
-      else if(phase == Fitting_phase::Subset)
-        enter(Fitting_phase::All_points);
+      if(phase != Fitting_phase::All_points)
+        enter(next_phase(phase));
       else if(rechecked || !recheck_correspondences())
       {
         status.converged = true;
@@ -599,6 +392,304 @@ private:
     std::vector<double> distance;
     double scale = HUGE_VAL; // Cauchy scale c (infinite: no robust weighting)
   };
+
+  // \throws std::invalid_argument on settings the fit cannot work with.
+  static void check_settings(const Fitting_settings& settings)
+  {
+    if(settings.mesh_resolution < 2 || settings.maximum_iterations == 0 || settings.steady_iterations == 0 ||
+       !(settings.energy_tolerance >= 0.) || !(settings.force_tolerance >= 0.) ||
+       !(settings.maximum_size_factor > 0.) || !(settings.placement_stiffness >= 0.) ||
+       !std::isfinite(settings.placement_stiffness) || settings.projection_iterations < 1 ||
+       !(settings.maximum_running_time > 0.))
+      throw std::invalid_argument("Deformable_model_fitter: invalid settings (mesh_resolution >= 2, "
+                                  "maximum_iterations >= 1, steady_iterations >= 1, projection_iterations >= 1, "
+                                  "tolerances >= 0, maximum_size_factor > 0, a finite placement_stiffness >= 0 and "
+                                  "maximum_running_time > 0 are required)");
+  }
+
+  // Copies the points as `double`, with the two length scales of the fit.
+  template <class PointRange, class PointMap>
+  void read_points(const PointRange& points, PointMap point_map)
+  {
+    CGAL::Bbox_3 box;
+    for(const auto& item : points)
+    {
+      const Point_3& p = get(point_map, item);
+      m_points.emplace_back(CGAL::to_double(p.x()), CGAL::to_double(p.y()), CGAL::to_double(p.z()));
+      box += p.bbox();
+    }
+    m_diagonal = std::sqrt(CGAL::square(box.xmax() - box.xmin()) + CGAL::square(box.ymax() - box.ymin()) +
+                           CGAL::square(box.zmax() - box.zmin()));
+    Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
+    for(const Eigen::Vector3d& p : m_points) centroid += p;
+    centroid /= double(m_points.size());
+    for(const Eigen::Vector3d& p : m_points) m_diameter = (std::max)(m_diameter, 2. * (p - centroid).norm());
+  }
+
+  // The phases of run(), in order: rigid (if asked for), the subset (if it
+  // is not all points), all points.
+  Fitting_phase first_phase() const
+  {
+    if(m_settings.rigid_first)
+      return Fitting_phase::Rigid;
+    return m_subset.size() < m_all.size() ? Fitting_phase::Subset : Fitting_phase::All_points;
+  }
+  Fitting_phase next_phase(Fitting_phase p) const
+  {
+    if(p == Fitting_phase::Rigid && m_subset.size() < m_all.size())
+      return Fitting_phase::Subset;
+    return Fitting_phase::All_points;
+  }
+  void enter_phase(Fitting_phase p)
+  {
+    move_pose_only(p == Fitting_phase::Rigid);
+    use_all_points(p == Fitting_phase::All_points || (p == Fitting_phase::Rigid && !(m_subset.size() < m_all.size())));
+    // A phase starts undamped: the damping that ended the last one (grown by
+    // the failed steps of its rest state) says nothing about the new energy,
+    // and would only slow the new phase's first steps down.
+    m_lambda = (std::min)(m_lambda, initial_damping);
+    m_dt_scale = 1.;
+  }
+
+  // The convergence test of one step of run(): it stalled, or it was
+  // accepted with a relative energy decrease and a scaled force under the
+  // tolerances.
+  bool is_at_rest(const Step_report& r) const
+  {
+    const double decrease = (r.energy_before - r.energy_after) / (std::max)(r.energy_before, 1e-300);
+    return r.stalled || (r.accepted && decrease <= m_settings.energy_tolerance &&
+                         r.scaled_force <= m_settings.force_tolerance);
+  }
+
+  // The linear system of the dynamics at fixed correspondences (eq. 7, 8),
+  // point-to-plane: H = J^T W J and g = J^T W r (the parameter force f_q),
+  // J's rows the force directions in parameter space L(u_i)^T n_i; the
+  // weights w_i, and the energy E = (1/2) sum_i w_i r_i^2 (with the
+  // springs' energy once add_placement_springs() has added them).
+  struct Normal_equations
+  {
+    Eigen::MatrixXd H;
+    Eigen::VectorXd g;
+    std::vector<double> w;
+    double energy = 0.;
+  };
+
+  Normal_equations assemble_normal_equations(const std::vector<std::size_t>& active, const Correspondences& corr) const
+  {
+    const std::size_t n = m_model.number_of_parameters();
+    Normal_equations system;
+    system.H = Eigen::MatrixXd::Zero(Eigen::Index(n), Eigen::Index(n));
+    system.g = Eigen::VectorXd::Zero(Eigen::Index(n));
+    system.w.resize(active.size());
+    Eigen::MatrixXd& H = system.H;
+    Eigen::VectorXd Jn(static_cast<Eigen::Index>(n));
+    std::vector<Eigen::Index> nonzero;
+    typename Model::Jacobian L;
+    for(std::size_t k = 0; k < active.size(); ++k)
+    {
+      const Point_3 x = m_model.point_and_jacobian(corr.u[k], L);
+      const double r = corr.normal[k].dot(m_points[active[k]] - Eigen::Vector3d(x.x(), x.y(), x.z()));
+      const double w = system.w[k] = weight(corr.distance[k], corr.scale);
+      Jn.noalias() = L.transpose() * corr.normal[k];
+      system.g.noalias() += (w * r) * Jn;
+      system.energy += 0.5 * w * r * r;
+      // A point of a blended model depends on the few components and blends
+      // that reach it: the outer product only over its nonzero entries.
+      nonzero.clear();
+      for(Eigen::Index i = 0; i < Jn.size(); ++i)
+        if(Jn[i] != 0.)
+          nonzero.push_back(i);
+      if(2 * nonzero.size() > n)
+        H.template selfadjointView<Eigen::Lower>().rankUpdate(Jn, w);
+      else
+        for(std::size_t a = 0; a < nonzero.size(); ++a)
+        {
+          const double wa = w * Jn[nonzero[a]];
+          for(std::size_t b = 0; b <= a; ++b)
+            H(nonzero[a], nonzero[b]) += wa * Jn[nonzero[b]];
+        }
+    }
+    H.template triangularView<Eigen::Upper>() = H.transpose();
+    return system;
+  }
+
+  // The placement springs (sec. 3.5), E_s = (1/2) sum_i N k_i (q_i - rest_i)^2
+  // for N points, added to the system (their stiffness set at the first
+  // step); returns E_s.
+  double add_placement_springs(Normal_equations& system, const Eigen::VectorXd& q, std::size_t points_used)
+  {
+    if(m_spring.empty())
+      set_springs(system.H, points_used);
+    const double N = double(points_used);
+    for(std::size_t i = 0; i < m_spring.size(); ++i)
+      if(m_spring[i] > 0.)
+      {
+        const Eigen::Index ii = Eigen::Index(i);
+        system.H(ii, ii) += N * m_spring[i];
+        system.g[ii] -= N * m_spring[i] * (q[ii] - m_rest[ii]);
+      }
+    const double e = spring_energy(q, points_used);
+    system.energy += e;
+    return e;
+  }
+
+  // Parameters held at a bound by a force pushing past it are frozen for
+  // this step (an active set): a step computed without the bound and then
+  // clamped points the wrong way and only makes the damping grow. So are
+  // those move_pose_only() holds. Returns which parameters may move.
+  std::vector<bool> freeze_parameters_at_bounds(Normal_equations& system, const Eigen::VectorXd& q) const
+  {
+    const std::size_t n = m_model.number_of_parameters();
+    std::vector<bool> free_parameter = m_active_parameters;
+    for(std::size_t i = 0; i < n; ++i)
+    {
+      const Eigen::Index ii = Eigen::Index(i);
+      if((system.g[ii] < 0. && q[ii] <= lower_bound(i)) || (system.g[ii] > 0. && q[ii] >= upper_bound(i)))
+        free_parameter[i] = false;
+    }
+    for(std::size_t i = 0; i < n; ++i)
+      if(!free_parameter[i])
+      {
+        system.H.row(Eigen::Index(i)).setZero();
+        system.H.col(Eigen::Index(i)).setZero();
+        system.H(Eigen::Index(i), Eigen::Index(i)) = 1.;
+        system.g[Eigen::Index(i)] = 0.;
+      }
+    return free_parameter;
+  }
+
+  // Step_report::scaled_force: the largest cosine between the residual and a
+  // free parameter direction.
+  double scaled_force(const Normal_equations& system, const std::vector<bool>& free_parameter,
+                      std::size_t points_used) const
+  {
+    const double floor = CGAL::square(1e-12 * m_diameter) * double(points_used);
+    double result = 0.;
+    for(std::size_t i = 0; i < free_parameter.size(); ++i)
+    {
+      const Eigen::Index ii = Eigen::Index(i);
+      if(!free_parameter[i])
+        continue;
+      const double den = std::sqrt(2. * (system.energy + floor) * system.H(ii, ii));
+      if(den > 0.)
+        result = (std::max)(result, std::abs(system.g[ii]) / den);
+    }
+    return result;
+  }
+
+  // The trials of one step (see step()): its points, correspondences,
+  // parameters and system, and what the trials so far found.
+  struct Step_trials
+  {
+    const std::vector<std::size_t>& active;
+    const Correspondences& corr;
+    const Eigen::VectorXd& q;
+    const Normal_equations& system;
+    bool negligible = false; // a trial's decrease was under the tolerance: a rest state
+    int sweeps = 0;          // closest-point sweeps spent on trials
+  };
+
+  // The acceptance test of one proposed change `delta` (clamped to the
+  // bounds): it must lower the energy at the step's correspondences, by more
+  // than the energy tolerance, and not raise the true energy, measured with
+  // the closest points of the trial model (at most two such sweeps a step).
+  // On acceptance the trial becomes the model, with these closest points.
+  bool try_step(const Eigen::VectorXd& delta, Step_trials& trials, Step_report& report)
+  {
+    const std::vector<std::size_t>& active = trials.active;
+    const Correspondences& corr = trials.corr;
+    const std::size_t n = m_model.number_of_parameters();
+    Eigen::VectorXd q1 = trials.q + delta;
+    for(std::size_t i = 0; i < n; ++i)
+      q1[Eigen::Index(i)] = (std::min)((std::max)(q1[Eigen::Index(i)], lower_bound(i)), upper_bound(i));
+    Model trial = m_model;
+    try
+    {
+      trial.set_parameters(q1);
+    }
+    catch(const std::invalid_argument&)
+    {
+      return false; // e.g. a blending region leaving its chart: a step too far
+    }
+    const double spring1 = spring_energy(q1, active.size());
+    double E1 = spring1;
+    // the points (the same as point()) with their chart Jacobians: the
+    // closest-point sweep starts from these chart points
+    // (where a blended model's regions moved, a chart point may have left
+    // the surface or have another canonical point: then only the point)
+    m_start_points.resize(active.size());
+    m_start_jacobians.resize(active.size());
+    m_start_valid.assign(active.size(), false);
+    for(std::size_t k = 0; k < active.size(); ++k)
+    {
+      Chart_point cu;
+      const Chart_point& u = corr.u[k];
+      m_start_valid[k] = trial.canonical_surface_point(u, cu) && cu.chart == u.chart && cu.x == u.x && cu.y == u.y;
+      const Point_3 x = m_start_valid[k] ? trial.point_and_chart_jacobian(u, m_start_jacobians[k]) : trial.point(u);
+      m_start_points[k] = Eigen::Vector3d(x.x(), x.y(), x.z());
+      E1 += 0.5 * trials.system.w[k] * CGAL::square(corr.normal[k].dot(m_points[active[k]] - m_start_points[k]));
+    }
+    const double E0 = trials.system.energy;
+    if(!(E1 <= E0))
+      return false;
+    if(E0 - E1 <= m_settings.energy_tolerance * E0)
+    {
+      trials.negligible = true; // a rest state: not worth a sweep, and the model stays put
+      return false;
+    }
+    if(++trials.sweeps > 2)
+      return false;
+    Correspondences moved = attach(trial, active, &corr, true);
+    const double F1 = true_energy(moved.distance, corr.scale) + spring1;
+    if(!(F1 <= report.energy_before))
+      return false;
+    m_model = trial;
+    set_correspondences(std::move(moved), m_use_all);
+    report.energy_after = F1;
+    report.fixed_energy_after = E1;
+    report.accepted = true;
+    return true;
+  }
+
+  // The step solve of the implicit integrator (Integrator::Gauss_newton):
+  // (H + lambda diag(H)) dq = g, the damping lambda lowered after an
+  // accepted trial and raised after a rejected one.
+  void damped_gauss_newton_step(Step_trials& trials, Step_report& report)
+  {
+    const std::size_t n = m_model.number_of_parameters();
+    const Eigen::VectorXd diag = trials.system.H.diagonal();
+    const double ridge = 1e-12 * (diag.sum() / double(n) + 1e-300);
+    for(int attempt = 0; attempt < 8 && !report.accepted && !trials.negligible && trials.sweeps <= 2; ++attempt)
+    {
+      Eigen::MatrixXd A = trials.system.H;
+      A.diagonal() += m_lambda * diag + Eigen::VectorXd::Constant(Eigen::Index(n), ridge);
+      const Eigen::VectorXd delta = A.ldlt().solve(trials.system.g);
+      if(delta.allFinite() && try_step(delta, trials, report))
+        m_lambda = (std::max)(m_lambda / 3., 1e-9);
+      else if(!trials.negligible) // at a rest state the damping is not to blame: it would
+        m_lambda = (std::min)(m_lambda * 8., 1e12); // only slow down the next phase's first steps
+    }
+  }
+
+  // The step solve of the paper's explicit integrator (eq. 7):
+  // dq = dt f_q with dt = 1 / lambda_max(J^T J), stable for the linearized
+  // dynamics q' = f_q, times a reduction that persists between steps
+  // (halved on failure, grown back on success) where the nonlinearity needs
+  // shorter steps.
+  void explicit_step(Step_trials& trials, Step_report& report)
+  {
+    const double lmax =
+      Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(trials.system.H, Eigen::EigenvaluesOnly).eigenvalues().maxCoeff();
+    const double dt = (lmax > 0.) ? 1. / lmax : 0.;
+    for(int attempt = 0; attempt < 12 && !report.accepted && !trials.negligible && trials.sweeps <= 2 && dt > 0.;
+        ++attempt)
+    {
+      if(try_step(m_dt_scale * dt * trials.system.g, trials, report))
+        m_dt_scale = (std::min)(1., 1.5 * m_dt_scale);
+      else
+        m_dt_scale *= 0.5;
+    }
+  }
 
   // Positions the chart meshes; their AABB tree is rebuilt when next searched
   // (a rejected trial's meshes are put back without a rebuild that nobody uses).
@@ -862,4 +953,4 @@ private:
 } // namespace Blended_shapes
 } // namespace CGAL
 
-#endif // CGAL_BLENDED_SHAPE_FITTING_BLENDED_SHAPE_FITTER_H
+#endif // CGAL_BLENDED_SHAPE_FITTING_DEFORMABLE_MODEL_FITTER_H

@@ -1,0 +1,113 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
+#ifndef CGAL_BLENDED_SHAPE_FITTING_FITTING_SETTINGS_H
+#define CGAL_BLENDED_SHAPE_FITTING_FITTING_SETTINGS_H
+
+#include <CGAL/Blended_shape/parameters.h>
+
+#include <CGAL/Named_function_parameters.h>
+#include <CGAL/boost/graph/named_params_helper.h>
+
+#include <cmath>
+#include <cstddef>
+
+namespace CGAL {
+namespace Blended_shapes {
+
+/// \ingroup PkgBlendedShapeFitting
+/// How the dynamics `dq/dt = f_q` (eq. 7) are integrated.
+enum class Integrator
+{
+  /// The paper's explicit first-order dynamics: `q <- q + dt f_q` with
+  /// `dt = 1 / lambda_max(J^T J)`, the largest step that is stable for the
+  /// linearized dynamics, halved until the step is accepted (see Deformable_model_fitter::step()).
+  Explicit,
+  /// An implicit (damped Gauss-Newton, Levenberg-Marquardt) step of the same dynamics with the
+  /// same correspondences: `(J^T J + lambda diag(J^T J)) dq = J^T r`.
+  /// Same rest states, far fewer iterations. The default.
+  Gauss_newton
+};
+
+/// \ingroup PkgBlendedShapeFitting
+/// Optional down-weighting of far points (stray points of real scans).
+enum class Robust_weighting
+{
+  None,  ///< every point pulls with weight 1 (the paper)
+  /// Cauchy weights `w_i = 1 / (1 + (r_i / c)^2)`, recomputed every iteration from the
+  /// distances `r_i` to the model, with `c = 2.385 * 1.4826 * median(r_i)`.
+  Cauchy
+};
+
+/*!
+\ingroup PkgBlendedShapeFitting
+Everything that steers a fit, with its defaults: the member initializers
+below are the only place they are written. Every member can be given as a
+named parameter, read by settings_from_named_parameters(), which the entry
+points that take named parameters (fit_superquadric()) use.
+*/
+struct Fitting_settings
+{
+  Integrator integrator = Integrator::Gauss_newton; ///< the integration scheme
+  /// Iterations over all phases (named parameter `CGAL::parameters::number_of_iterations`).
+  std::size_t maximum_iterations = 100;
+  double energy_tolerance = 1e-10;        ///< relative energy decrease of one step
+  double force_tolerance = 1e-6;          ///< largest scaled parameter force, see Step_report::scaled_force
+  std::size_t steady_iterations = 2;      ///< consecutive steps under both tolerances
+  int mesh_resolution = 10;               ///< chart tessellation (rings from pole to equator)
+  int projection_iterations = 20;         ///< at most this many Gauss-Newton steps from a start to the closest point on the surface
+  std::size_t subset_size = 4000;         ///< points used before the all-points phase (0: all from the start)
+  /// Chooses the subset (named parameter `CGAL::parameters::random_seed`).
+  unsigned int random_seed = 0;
+  bool rigid_first = false;               ///< parameter scheduling: translation and rotation alone first
+  std::size_t rigid_iterations = 5;       ///< at most this many rigid-only steps
+  Robust_weighting robust_weighting = Robust_weighting::None; ///< weighting of far points
+  /// Shape lengths (Parameter_kind::Length, e.g. semi-axes) are kept at most this
+  /// factor times the diameter of the points about their centroid (twice the
+  /// largest distance to it; unlike a bounding box, it does not depend on the
+  /// orientation of the cloud): with one view of an object nothing else stops
+  /// the model from growing where there is no data.
+  double maximum_size_factor = 1.;
+  /// The loose spring of sec. 3.5 that holds the placement of each added
+  /// component of a blended model (relative to its parent) to where it was
+  /// when the fit started: its stiffness per parameter is this fraction of
+  /// the mean stiffness the data give that placement's translation or
+  /// quaternion at the first step. It keeps the join good where the data
+  /// leave a placement free (a hole turning about its axis, a part sliding
+  /// along its base) and biases the rest by about this fraction of the
+  /// distance moved. 0: no spring.
+  double placement_stiffness = 0.01;
+  /// Seconds (named parameter `CGAL::parameters::maximum_running_time`).
+  double maximum_running_time = HUGE_VAL;
+};
+
+/*!
+\ingroup PkgBlendedShapeFitting
+The settings of a fit given by the named parameters `np`; a setting not
+given keeps the default of Fitting_settings. Every member of
+Fitting_settings is read: from `CGAL::parameters`, `number_of_iterations`
+(Fitting_settings::maximum_iterations), `random_seed` and
+`maximum_running_time`; from `Blended_shapes::parameters`, the others under
+their member names. Other parameters in `np` are ignored.
+*/
+template <class NamedParameters = CGAL::parameters::Default_named_parameters>
+Fitting_settings settings_from_named_parameters(const NamedParameters& np = CGAL::parameters::default_values())
+{
+  using CGAL::parameters::choose_parameter;
+  using CGAL::parameters::get_parameter;
+  Fitting_settings s;
+  // CGAL's own names
+  s.maximum_iterations = choose_parameter(get_parameter(np, CGAL::internal_np::number_of_iterations), s.maximum_iterations);
+  s.random_seed = choose_parameter(get_parameter(np, CGAL::internal_np::random_seed), s.random_seed);
+  s.maximum_running_time = choose_parameter(get_parameter(np, CGAL::internal_np::maximum_running_time), s.maximum_running_time);
+  // the package's, one per member of the same name (internal/parameter_names.h)
+#define CGAL_BLENDED_SHAPE_PARAMETER(NAME)
+#define CGAL_BLENDED_SHAPE_FITTING_SETTING(NAME) s.NAME = choose_parameter(get_parameter(np, internal_np::NAME), s.NAME);
+#include <CGAL/Blended_shape/internal/parameter_names.h>
+#undef CGAL_BLENDED_SHAPE_FITTING_SETTING
+#undef CGAL_BLENDED_SHAPE_PARAMETER
+  return s;
+}
+
+} // namespace Blended_shapes
+} // namespace CGAL
+
+#endif // CGAL_BLENDED_SHAPE_FITTING_FITTING_SETTINGS_H

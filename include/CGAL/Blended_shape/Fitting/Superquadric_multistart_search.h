@@ -1,0 +1,295 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
+#ifndef CGAL_BLENDED_SHAPE_FITTING_SUPERQUADRIC_MULTISTART_SEARCH_H
+#define CGAL_BLENDED_SHAPE_FITTING_SUPERQUADRIC_MULTISTART_SEARCH_H
+
+#include <CGAL/Blended_shape/Fitting/Deformable_model.h>
+#include <CGAL/Blended_shape/Fitting/Deformable_model_fitter.h>
+#include <CGAL/Blended_shape/Fitting/Fitting_settings.h>
+#include <CGAL/Blended_shape/Fitting/Fitting_visitor.h>
+#include <CGAL/Blended_shape/Fitting/initialize_from_moments.h>
+#include <CGAL/Blended_shape/Primitives/Superquadric_ellipsoid.h>
+#include <CGAL/Blended_shape/internal/quaternion.h>
+
+#include <Eigen/Dense>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <functional>
+#include <memory>
+#include <stdexcept>
+#include <string>
+
+namespace CGAL {
+namespace Blended_shapes {
+
+/*!
+\ingroup PkgBlendedShapeFitting
+The closed model of an initial ellipsoid (sec. 5.3): a superquadric ellipsoid
+with e1 = e2 = 1 placed at the ellipsoid's centre and rotation.
+
+`z_axis` in {0, 1, 2} chooses which principal direction becomes the
+primitive's z axis (the axis of e1); the frame is permuted cyclically so it
+stays right-handed. The ellipsoid is the same for all three; the fits that
+start from them are not, because a superquadric with e1 != e2 is not
+symmetric under exchanging its z axis with another.
+*/
+template <class GeomTraits>
+Deformable_model<Superquadric_ellipsoid<GeomTraits>> make_initial_model(const Ellipsoid_fit<GeomTraits>& fit,
+                                                                        int z_axis = 2)
+{
+  if(z_axis < 0 || z_axis > 2)
+    throw std::invalid_argument("make_initial_model: z_axis must be 0, 1 or 2");
+  const int k = (z_axis + 1) % 3; // principal direction that becomes the primitive's x axis
+  const Eigen::Matrix3d R0 = fit.rotation_matrix();
+  Eigen::Matrix3d R;
+  std::array<double, 3> a;
+  for(int i = 0; i < 3; ++i)
+  {
+    R.col(i) = R0.col((k + i) % 3);
+    a[std::size_t(i)] = fit.axes[std::size_t((k + i) % 3)];
+  }
+  const Superquadric_ellipsoid<GeomTraits> shape(a[0], a[1], a[2], 1., 1.);
+  const Eigen::Vector3d c(CGAL::to_double(fit.center.x()), CGAL::to_double(fit.center.y()),
+                          CGAL::to_double(fit.center.z()));
+  return Deformable_model<Superquadric_ellipsoid<GeomTraits>>(shape, c, internal::quaternion_from_matrix(R));
+}
+
+/// \ingroup PkgBlendedShapeFitting
+/// The number of similar superquadrics of similar_superquadric().
+constexpr int number_of_similar_superquadrics = 5;
+
+/*!
+\ingroup PkgBlendedShapeFitting
+A superquadric close to `model` in shape but in another basin of the fit
+(the "similar superquadrics" of superquadric recovery from partial views),
+in the same place:
+- `swap` = 0 or 1: its z axis exchanged with its x axis (0) or y axis (1),
+  with e1 and e2 exchanged;
+- `swap` = 2: its cross-section turned by 45 degrees about z with e2 replaced
+  by 2 - e2 and the section's axes averaged and stretched by 2^((1 - e2)/2)
+  (a square seen across its diagonal is a diamond);
+- `swap` = 3 or 4: swap 2 followed by swap 0 or 1 (a box whose square
+  section was taken for a diamond about the wrong axis needs both).
+\throws std::invalid_argument unless 0 <= swap < number_of_similar_superquadrics
+*/
+template <class GeomTraits>
+Deformable_model<Superquadric_ellipsoid<GeomTraits>>
+similar_superquadric(const Deformable_model<Superquadric_ellipsoid<GeomTraits>>& model, int swap)
+{
+  if(swap < 0 || swap >= number_of_similar_superquadrics)
+    throw std::invalid_argument("similar_superquadric: swap must be in [0, " +
+                                std::to_string(number_of_similar_superquadrics) + ")");
+  if(swap > 2)
+    return similar_superquadric(similar_superquadric(model, 2), swap - 3);
+  const auto q = model.shape().parameters();
+  const Eigen::Matrix3d R0 = model.rotation();
+  Eigen::Matrix3d R = R0;
+  Eigen::Vector3d a(q[0], q[1], q[2]);
+  double e1 = q[4], e2 = q[3];
+  if(swap < 2)
+  {
+    const int k = swap; // the axis that becomes z
+    R.col(2) = R0.col(k);
+    R.col(k) = -R0.col(2); // keeps R a rotation
+    std::swap(a[2], a[k]);
+  }
+  else
+  {
+    // a quarter turn of the cross-section: a squarish section (e2 < 1) seen
+    // from one side is close to a diamond-ish one (2 - e2) turned by 45 degrees
+    const double c = std::sqrt(0.5);
+    R.col(0) = c * (R0.col(0) + R0.col(1));
+    R.col(1) = c * (R0.col(1) - R0.col(0));
+    const double stretch = std::pow(2., 0.5 * (1. - q[4]));
+    const double r = 0.5 * (a[0] + a[1]) * stretch;
+    a[0] = a[1] = r;
+    e1 = q[3];
+    e2 = (std::min)((std::max)(2. - q[4], 0.1), 2.);
+  }
+  const Superquadric_ellipsoid<GeomTraits> shape(a[0], a[1], a[2], e1, e2);
+  return Deformable_model<Superquadric_ellipsoid<GeomTraits>>(shape, model.translation(),
+                                                              internal::quaternion_from_matrix(R));
+}
+
+/*!
+\ingroup PkgBlendedShapeFitting
+
+The multi-start search of fit_superquadric() among the basins of a
+superquadric fit. Partial views often leave the fit of a superquadric in
+the basin of a similar superquadric (its z axis exchanged with x or y, the
+exponents swapped, its cross-section turned by 45 degrees, or both; see
+similar_superquadric()), so the candidates are compared, as EMS iterates its
+similarity search, by short fits:
+
+- before the full fit, best_start(): a rough fit from each of the three
+  choices of the primitive's z axis among the principal directions of the
+  initial ellipsoid (make_initial_model()), then from the similar
+  superquadrics of the closest; the closest of all is the start;
+- after it, search_similar_basins(): each similar superquadric of the fit
+  is fitted roughly; one clearly closer to the rough subset than the fit is
+  fitted on the fit's subset, then, if closer there, on all points, and kept
+  if it ends closer to all points (by more than 1 % of the mean squared
+  distance, everywhere). At most three rounds.
+
+The rough fits use a 25th of the subset (160 points by default: enough to
+tell basins apart; the same points for every candidate), loose tolerances
+and at most 10 iterations. Every short fit calls the visitor and the
+callback as a full fit does, and counts in candidate_iterations().
+
+\tparam GeomTraits the kernel of the points
+\tparam PointRange the range of the points, kept by reference: it must outlive the search
+\tparam PointMap the property map from the range's items to `GeomTraits::Point_3`
+*/
+template <class GeomTraits, class PointRange, class PointMap>
+class Superquadric_multistart_search
+{
+public:
+  typedef Deformable_model<Superquadric_ellipsoid<GeomTraits>> Model; ///< the model fitted
+  typedef Deformable_model_fitter<Model> Fitter;                        ///< the fitter of one candidate
+  typedef std::function<bool(double)> Callback; ///< see Deformable_model_fitter::run()
+
+  /// A search for fits of `points` with the settings `settings` of the full fit.
+  Superquadric_multistart_search(const PointRange& points, PointMap point_map, const Fitting_settings& settings)
+    : m_points(points), m_point_map(point_map), m_settings(settings), m_rough(settings), m_challenger(settings)
+  {
+    m_rough.subset_size = (std::max<std::size_t>)(settings.subset_size / 25, 100);
+    m_rough.energy_tolerance = (std::max)(settings.energy_tolerance, 1e-4);
+    m_rough.force_tolerance = (std::max)(settings.force_tolerance, 1e-2);
+    m_rough.maximum_iterations = (std::min<std::size_t>)(settings.maximum_iterations, 10);
+    m_rough.mesh_resolution = (std::max)(2, settings.mesh_resolution / 2); // the mesh only seeds the analytic closest points
+    // the challengers' fits on the subset: only to compare them
+    m_challenger.energy_tolerance = (std::max)(settings.energy_tolerance, 1e-6);
+    m_challenger.force_tolerance = (std::max)(settings.force_tolerance, 1e-3);
+    m_challenger.maximum_iterations = (std::min<std::size_t>)(settings.maximum_iterations, 30);
+  }
+
+  /// The start of the full fit: the closest rough fit among the three z-axis
+  /// choices of `initial` and the similar superquadrics of the closest of them
+  /// (ties keep the earlier candidate). Stops early if the callback aborts a fit.
+  template <class Visitor>
+  Model best_start(const Ellipsoid_fit<GeomTraits>& initial, Visitor& visitor, const Callback& callback)
+  {
+    Model start = make_initial_model(initial, 2);
+    double best_distance = HUGE_VAL;
+    auto consider = [&](const Model& m) {
+      double d;
+      const Model fitted = rough_fit(m, d, visitor, callback);
+      if(d < best_distance) // strict: ties keep the earlier candidate, deterministically
+      {
+        best_distance = d;
+        start = fitted;
+      }
+    };
+    for(int z_axis = 0; z_axis < 3 && !m_status.aborted; ++z_axis)
+      consider(make_initial_model(initial, z_axis));
+    const Model winner = start;
+    for(int swap = 0; swap < number_of_similar_superquadrics && !m_status.aborted; ++swap)
+      consider(similar_superquadric(winner, swap));
+    return start;
+  }
+
+  /// After the full fit `fitter`, which ended with `status`: the fitter of a
+  /// closer fit from a similar superquadric, if one is found, else `fitter`.
+  /// Updates `status` (converged: that of the fit returned; aborted).
+  template <class Visitor>
+  std::unique_ptr<Fitter> search_similar_basins(std::unique_ptr<Fitter> fitter, Fitting_status& status,
+                                                Visitor& visitor, const Callback& callback)
+  {
+    double current = fitter->mean_squared_distance(true);
+    for(int round = 0; round < 3 && !status.aborted && !status.timed_out; ++round)
+    {
+      const Model fitted = fitter->model();
+      double reference;
+      {
+        Fitter probe(m_points, fitted, m_rough, m_point_map);
+        reference = probe.mean_squared_distance(false);
+      }
+      std::unique_ptr<Fitter> better;
+      for(int swap = 0; swap < number_of_similar_superquadrics && !m_status.aborted; ++swap)
+      {
+        double d;
+        const Model m = rough_fit(similar_superquadric(fitted, swap), d, visitor, callback);
+        // Clearly closer: a rough fit of the subset alone beats the full
+        // fit there by a little even in the same basin.
+        if(m_status.aborted || !(d < 0.8 * reference))
+          continue;
+        Fitting_status st;
+        std::unique_ptr<Fitter> challenger = fit_challenger(m, better ? *better : *fitter, st, visitor, callback);
+        if(!challenger)
+          continue;
+        if(st.aborted)
+        {
+          m_status.aborted = true;
+          continue;
+        }
+        const double full = challenger->mean_squared_distance(true);
+        if(full < 0.99 * current) // by more than 1 %: not the same rest state again
+        {
+          current = full;
+          better = std::move(challenger);
+          status.converged = st.converged;
+        }
+      }
+      status.aborted = status.aborted || m_status.aborted;
+      if(!better)
+        break;
+      fitter = std::move(better);
+    }
+    return fitter;
+  }
+
+  /// The iterations of all the short fits so far.
+  std::size_t candidate_iterations() const { return m_candidate_iterations; }
+  /// How the last rough fit ended (default-constructed before the first).
+  const Fitting_status& last_candidate_status() const { return m_status; }
+  /// Whether the callback aborted a short fit.
+  bool aborted() const { return m_status.aborted; }
+
+private:
+  // A rough fit of `m` on the rough subset, with its mean squared distance there.
+  template <class Visitor>
+  Model rough_fit(const Model& m, double& distance, Visitor& visitor, const Callback& callback)
+  {
+    Fitter candidate(m_points, m, m_rough, m_point_map);
+    m_status = candidate.run(visitor, callback, Fitting_phase::Subset);
+    m_candidate_iterations += m_status.iterations;
+    distance = candidate.mean_squared_distance(false);
+    return candidate.model();
+  }
+
+  // A challenger from `m`, fitted on the subset first (with looser
+  // tolerances: only to compare): only one that ends closer there than
+  // `best` goes on to all points (a few hundred points can be fitted closely
+  // by a superquadric that is far from the rest of a partial view). Null if
+  // it does not; `st` says how its last fit ended.
+  template <class Visitor>
+  std::unique_ptr<Fitter> fit_challenger(const Model& m, Fitter& best, Fitting_status& st, Visitor& visitor,
+                                         const Callback& callback)
+  {
+    std::unique_ptr<Fitter> challenger = std::make_unique<Fitter>(m_points, m, m_challenger, m_point_map);
+    st = challenger->run(visitor, callback, Fitting_phase::Subset);
+    m_candidate_iterations += st.iterations;
+    if(st.aborted)
+      return challenger;
+    if(!(challenger->mean_squared_distance(false) < 0.99 * best.mean_squared_distance(false)))
+      return nullptr;
+    challenger = std::make_unique<Fitter>(m_points, challenger->model(), m_settings, m_point_map);
+    st = challenger->run(visitor, callback);
+    m_candidate_iterations += st.iterations;
+    return challenger;
+  }
+
+  const PointRange& m_points;
+  PointMap m_point_map;
+  Fitting_settings m_settings;   // of the full fits
+  Fitting_settings m_rough;      // of the rough fits
+  Fitting_settings m_challenger; // of the challengers' fits on the subset
+  std::size_t m_candidate_iterations = 0;
+  Fitting_status m_status; // of the last rough fit
+};
+
+} // namespace Blended_shapes
+} // namespace CGAL
+
+#endif // CGAL_BLENDED_SHAPE_FITTING_SUPERQUADRIC_MULTISTART_SEARCH_H

@@ -1,0 +1,149 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
+#ifndef CGAL_BLENDED_SHAPE_FITTING_FIT_SUPERQUADRIC_H
+#define CGAL_BLENDED_SHAPE_FITTING_FIT_SUPERQUADRIC_H
+
+#include <CGAL/Blended_shape/Fitting/Deformable_model_fitter.h>
+#include <CGAL/Blended_shape/Fitting/Fitting_settings.h>
+#include <CGAL/Blended_shape/Fitting/Superquadric_multistart_search.h>
+#include <CGAL/Blended_shape/Fitting/Deformable_model.h>
+#include <CGAL/Blended_shape/Fitting/Fit_metrics.h>
+#include <CGAL/Blended_shape/Primitives/Superquadric_ellipsoid.h>
+#include <CGAL/Blended_shape/Fitting/initialize_from_moments.h>
+#include <CGAL/Blended_shape/internal/point_range_types.h>
+#include <CGAL/Blended_shape/parameters.h>
+
+#include <CGAL/Kernel_traits.h>
+#include <CGAL/Named_function_parameters.h>
+#include <CGAL/boost/graph/named_params_helper.h>
+
+#include <chrono>
+#include <functional>
+#include <memory>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace CGAL {
+namespace Blended_shapes {
+
+/// \ingroup PkgBlendedShapeMetrics
+/// The metrics of the current model of `fitter` after a run() that ended with `status`.
+template <class Fitter, class GeomTraits>
+Fit_metrics compute_fit_metrics(Fitter& fitter, const Ellipsoid_fit<GeomTraits>& initial,
+                                const Fitting_status& status)
+{
+  Fit_metrics m;
+  const auto forces = fitter.forces();
+  std::vector<Eigen::Vector3d> residuals;
+  residuals.reserve(forces.size());
+  double sum = 0.;
+  for(const auto& f : forces)
+  {
+    // Reported figures deserve foot points polished beyond what a fitting step needs.
+    const Eigen::Vector3d& p = fitter.points()[f.index];
+    const auto x = fitter.model().point(refine_closest_point(fitter.model(), p, f.chart_point, 50));
+    residuals.push_back(p - Eigen::Vector3d(CGAL::to_double(x.x()), CGAL::to_double(x.y()), CGAL::to_double(x.z())));
+    sum += residuals.back().squaredNorm();
+  }
+  m.number_of_points = forces.size();
+  m.number_of_parameters = fitter.model().number_of_parameters();
+  m.iterations = status.iterations;
+  m.relative_rms = relative_rms(residuals, initial);
+  m.rms = forces.empty() ? 0. : std::sqrt(sum / double(forces.size()));
+  m.rms_over_bbox_diagonal = m.rms / fitter.bounding_box_diagonal();
+  m.seconds = status.seconds;
+  m.converged = status.converged;
+  m.aborted = status.aborted;
+  return m;
+}
+
+/// \ingroup PkgBlendedShapeFitting
+/// What fit_superquadric() returns.
+template <class GeomTraits>
+struct Fit_result
+{
+  typedef Deformable_model<Superquadric_ellipsoid<GeomTraits>> Model; ///< the model type
+  Model model;                                  ///< the fitted model
+  Ellipsoid_fit<GeomTraits> initial_ellipsoid;  ///< the initialization (sec. 5.3), also the frame of eq. 14
+  Fit_metrics metrics;                          ///< the fit figures
+  std::vector<Chart_mesh<GeomTraits>> meshes;   ///< the model's chart meshes, positioned
+};
+
+/*!
+\ingroup PkgBlendedShapeFitting
+
+Fits one superquadric ellipsoid to `points`, in one call: best-fit
+ellipsoid initialization (initialize_from_moments()), the search for the
+closest start (Superquadric_multistart_search), the physics-based fit of
+Deformable_model_fitter until steady state, the search for a closer fit
+from similar superquadrics, then the metrics.
+
+(The evolution of a blended shape by splits and holes, sec. 5.4, is not
+done here: the model is always one superquadric.)
+
+\param points the input points (at least `minimum_number_of_points`, finite, not all identical)
+\param np optional named parameters.
+  The settings of the fit: every member of Fitting_settings, read by
+  settings_from_named_parameters() (meanings and defaults there).
+  From CGAL::parameters also:
+  - `point_map` (default identity), `geom_traits` (default from the point type),
+  - `visitor`: see Default_fitting_visitor (default: none),
+  - `callback`: `std::function<bool(double)>` called before each iteration with the
+    fraction of the iteration budget spent; returning false stops the fit, which
+    then holds the last accepted model (default: none).
+
+  From Blended_shapes::parameters also:
+  `try_all_axes` (`bool`, default `true`: the multi-start search of
+  Superquadric_multistart_search before and after the full fit, whose
+  iterations count in the result's; `false`: one fit from the initial
+  ellipsoid with make_initial_model()'s default z axis), and
+  `reference_mesh` (a pointer to a `CGAL::Surface_mesh<Point_3>`: then the
+  symmetric Chamfer distance to it is reported).
+
+\throws Input_error if the points are unusable; std::invalid_argument on invalid parameters.
+*/
+template <class PointRange, class NamedParameters = CGAL::parameters::Default_named_parameters>
+auto fit_superquadric(const PointRange& points, const NamedParameters& np = CGAL::parameters::default_values())
+{
+  using CGAL::parameters::choose_parameter;
+  using CGAL::parameters::get_parameter;
+  typedef internal::Point_range_types<PointRange, NamedParameters> Types;
+  typedef typename Types::Geom_traits Geom_traits;
+  typedef CGAL::Surface_mesh<typename Geom_traits::Point_3> Mesh;
+
+  const typename Types::Point_map point_map = Types::point_map(np);
+  const Fitting_settings s = settings_from_named_parameters(np);
+  const std::function<bool(double)> callback =
+    choose_parameter(get_parameter(np, CGAL::internal_np::callback), std::function<bool(double)>());
+  const Mesh* reference = choose_parameter(get_parameter(np, internal_np::reference_mesh), static_cast<const Mesh*>(nullptr));
+  auto visitor = choose_parameter(get_parameter(np, CGAL::internal_np::visitor), Default_fitting_visitor());
+
+  const bool all_axes = choose_parameter(get_parameter(np, internal_np::try_all_axes), true);
+  const auto start = std::chrono::steady_clock::now();
+
+  const auto initial = initialize_from_moments(points, CGAL::parameters::point_map(point_map));
+  typedef Superquadric_multistart_search<Geom_traits, PointRange, typename Types::Point_map> Search;
+  typedef typename Search::Model Model;
+  typedef typename Search::Fitter Fitter;
+  Search search(points, point_map, s);
+  const Model start_model = all_axes ? search.best_start(initial, visitor, callback) : make_initial_model(initial, 2);
+  std::unique_ptr<Fitter> fitter = std::make_unique<Fitter>(points, start_model, s, point_map);
+  Fitting_status final_status = search.last_candidate_status();
+  if(!search.aborted())
+    final_status = fitter->run(visitor, callback);
+  if(all_axes)
+    fitter = search.search_similar_basins(std::move(fitter), final_status, visitor, callback);
+  final_status.iterations += search.candidate_iterations();
+  final_status.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+
+  Fit_result<Geom_traits> result{fitter->model(), initial, compute_fit_metrics(*fitter, initial, final_status),
+                                 fitter->chart_meshes()};
+  if(reference != nullptr)
+    result.metrics.chamfer_distance = symmetric_chamfer_distance(result.meshes, *reference);
+  return result;
+}
+
+} // namespace Blended_shapes
+} // namespace CGAL
+
+#endif // CGAL_BLENDED_SHAPE_FITTING_FIT_SUPERQUADRIC_H
