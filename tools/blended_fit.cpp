@@ -171,18 +171,20 @@ struct Silent : BS::Default_fitting_visitor {};
 
 int main(int argc, char** argv)
 {
-  return tools::run_tool("blended_fit", usage, argc, argv, [](tools::Arguments& args) {
+  const auto options = tools::known_options({"--json", "--mesh", "--hierarchy", "--model", "--max-iterations", "--seed"},
+                                            {"--no-split", "--no-holes", "--quiet", "--robust", "--explicit"});
+  return tools::run_tool("blended_fit", usage, argc, argv, options, [](const tools::Command_line& line) {
     std::string input, json, mesh, hierarchy, model_file;
     bool no_split = false, no_holes = false, quiet = false, robust = false, explicit_integrator = false;
     std::size_t iterations = 100;
     unsigned int seed = 0;
-    while(!args.empty())
+    for(const tools::Option& o : line.options)
     {
-      const std::string a = args.next();
-      if(a == "--json") json = args.value_of(a);
-      else if(a == "--mesh") mesh = args.value_of(a);
-      else if(a == "--hierarchy") hierarchy = args.value_of(a);
-      else if(a == "--model") model_file = args.value_of(a);
+      const std::string& a = o.flag;
+      if(a == "--json") json = o.value;
+      else if(a == "--mesh") mesh = o.value;
+      else if(a == "--hierarchy") hierarchy = o.value;
+      else if(a == "--model") model_file = o.value;
       else if(a == "--no-split") no_split = true;
       else if(a == "--no-holes") no_holes = true;
       else if(a == "--quiet") quiet = true;
@@ -190,21 +192,21 @@ int main(int argc, char** argv)
       else if(a == "--explicit") explicit_integrator = true;
       else if(a == "--max-iterations")
       {
-        iterations = std::size_t(tools::parse_integer(a, args.value_of(a)));
+        iterations = std::size_t(tools::parse_integer(a, o.value));
         if(iterations == 0 || iterations > 1000000)
           throw tools::Usage_error("--max-iterations must be in [1, 1000000]");
       }
       else if(a == "--seed")
       {
-        const auto s = tools::parse_integer(a, args.value_of(a));
+        const auto s = tools::parse_integer(a, o.value);
         if(s > 0xffffffffu)
           throw tools::Usage_error("--seed must fit in 32 bits");
         seed = static_cast<unsigned int>(s);
       }
-      else if(tools::is_flag(a)) throw tools::Usage_error("unknown option " + a);
-      else if(input.empty()) input = a;
-      else throw tools::Usage_error("more than one input file ('" + input + "' and '" + a + "')");
     }
+    for(const std::string& a : line.operands)
+      if(input.empty()) input = a;
+      else throw tools::Usage_error("more than one input file ('" + input + "' and '" + a + "')");
     if(input.empty())
       throw tools::Usage_error("no input point cloud given");
     if(!mesh.empty() && tools::extension_of(mesh) != "ply" && tools::extension_of(mesh) != "off")
