@@ -393,18 +393,27 @@ private:
     double scale = HUGE_VAL; // Cauchy scale c (infinite: no robust weighting)
   };
 
-  // \throws std::invalid_argument on settings the fit cannot work with.
-  static void check_settings(const Fitting_settings& settings)
+  // \throws std::invalid_argument naming the first setting the fit cannot work with.
+  static void check_settings(const Fitting_settings& s)
   {
-    if(settings.mesh_resolution < 2 || settings.maximum_iterations == 0 || settings.steady_iterations == 0 ||
-       !(settings.energy_tolerance >= 0.) || !(settings.force_tolerance >= 0.) ||
-       !(settings.maximum_size_factor > 0.) || !(settings.placement_stiffness >= 0.) ||
-       !std::isfinite(settings.placement_stiffness) || settings.projection_iterations < 1 ||
-       !(settings.maximum_running_time > 0.))
-      throw std::invalid_argument("Deformable_model_fitter: invalid settings (mesh_resolution >= 2, "
-                                  "maximum_iterations >= 1, steady_iterations >= 1, projection_iterations >= 1, "
-                                  "tolerances >= 0, maximum_size_factor > 0, a finite placement_stiffness >= 0 and "
-                                  "maximum_running_time > 0 are required)");
+    auto require = [](bool ok, const char* what) {
+      if(!ok)
+        throw std::invalid_argument(std::string("Deformable_model_fitter: invalid settings: ") + what);
+    };
+    require(s.mesh_resolution >= 2, "mesh_resolution must be at least 2 (10 is the default)");
+    require(s.maximum_iterations >= 1, "maximum_iterations (number_of_iterations) must be at least 1");
+    require(s.steady_iterations >= 1, "steady_iterations must be at least 1");
+    require(s.projection_iterations >= 1, "projection_iterations must be at least 1");
+    require(s.energy_tolerance >= 0. && std::isfinite(s.energy_tolerance),
+            "energy_tolerance must be a finite number >= 0");
+    require(s.force_tolerance >= 0. && std::isfinite(s.force_tolerance),
+            "force_tolerance must be a finite number >= 0");
+    require(s.rest_tolerance >= 0. && s.rest_tolerance < 1.,
+            "rest_tolerance must be in [0, 1) (a relative energy decrease per step; 1e-4 is the default)");
+    require(s.maximum_size_factor > 0., "maximum_size_factor must be > 0");
+    require(s.placement_stiffness >= 0. && std::isfinite(s.placement_stiffness),
+            "placement_stiffness must be a finite number >= 0");
+    require(s.maximum_running_time > 0., "maximum_running_time must be > 0 seconds");
   }
 
   // Copies the points as `double`, with the two length scales of the fit.
@@ -451,14 +460,21 @@ private:
     m_dt_scale = 1.;
   }
 
-  // The convergence test of one step of run(): it stalled, or it was
+  // The convergence test of one step of run(): it stalled; or it was
   // accepted with a relative energy decrease and a scaled force under the
-  // tolerances.
+  // tolerances (a stationary point); or accepted with a relative energy
+  // decrease under `rest_tolerance` (the creeping rest of a shape the model
+  // cannot represent, see Fitting_settings::rest_tolerance).
   bool is_at_rest(const Step_report& r) const
   {
-    const double decrease = (r.energy_before - r.energy_after) / (std::max)(r.energy_before, 1e-300);
-    return r.stalled || (r.accepted && decrease <= m_settings.energy_tolerance &&
-                         r.scaled_force <= m_settings.force_tolerance);
+    const double decrease = relative_decrease(r);
+    return r.stalled || (r.accepted && ((decrease <= m_settings.energy_tolerance &&
+                                         r.scaled_force <= m_settings.force_tolerance) ||
+                                        decrease <= m_settings.rest_tolerance));
+  }
+  static double relative_decrease(const Step_report& r)
+  {
+    return (r.energy_before - r.energy_after) / (std::max)(r.energy_before, 1e-300);
   }
 
   // The linear system of the dynamics at fixed correspondences (eq. 7, 8),

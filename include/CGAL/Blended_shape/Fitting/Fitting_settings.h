@@ -51,7 +51,15 @@ struct Fitting_settings
   std::size_t maximum_iterations = 100;
   double energy_tolerance = 1e-10;        ///< relative energy decrease of one step
   double force_tolerance = 1e-6;          ///< largest scaled parameter force, see Step_report::scaled_force
-  std::size_t steady_iterations = 2;      ///< consecutive steps under both tolerances
+  std::size_t steady_iterations = 2;      ///< consecutive steps at rest that end a phase
+  /// A model that cannot represent the data (one superquadric for a mug)
+  /// comes to rest with data forces that balance but do not vanish, while its
+  /// closest points keep creeping: the energy then drops by a tiny fraction
+  /// per step for hundreds of steps. That is a rest state too (it is where
+  /// the split decision of sec. 5.4 acts): a step that lowers the energy by
+  /// at most this fraction counts as at rest whatever the forces. 0: only
+  /// vanishing forces (`energy_tolerance` and `force_tolerance`) are a rest state.
+  double rest_tolerance = 1e-4;
   int mesh_resolution = 10;               ///< chart tessellation (rings from pole to equator)
   int projection_iterations = 20;         ///< at most this many Gauss-Newton steps from a start to the closest point on the surface
   std::size_t subset_size = 4000;         ///< points used before the all-points phase (0: all from the start)
