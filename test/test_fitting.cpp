@@ -290,14 +290,15 @@ void test_settings_from_named_parameters()
              none.random_seed == d.random_seed && none.rigid_first == d.rigid_first &&
              none.rigid_iterations == d.rigid_iterations && none.robust_weighting == d.robust_weighting &&
              none.maximum_size_factor == d.maximum_size_factor &&
-             none.placement_stiffness == d.placement_stiffness && none.maximum_running_time == d.maximum_running_time,
+             none.placement_stiffness == d.placement_stiffness && none.maximum_running_time == d.maximum_running_time &&
+             none.number_of_threads == d.number_of_threads,
            "settings without named parameters differ from the defaults");
   const BS::Fitting_settings s = BS::settings_from_named_parameters(
     BSP::integrator(BS::Integrator::Explicit, BSP::energy_tolerance(1e-7, BSP::force_tolerance(1e-3,
     BSP::steady_iterations(std::size_t(3), BSP::mesh_resolution(7, BSP::projection_iterations(9,
     BSP::subset_size(std::size_t(123), BSP::rigid_first(true, BSP::rigid_iterations(std::size_t(4),
     BSP::robust_weighting(BS::Robust_weighting::Cauchy, BSP::maximum_size_factor(2.5,
-    BSP::placement_stiffness(0.5)))))))))))))
+    BSP::placement_stiffness(0.5, BSP::number_of_threads(std::size_t(3))))))))))))))
       .number_of_iterations(std::size_t(77))
       .random_seed(5u)
       .maximum_running_time(3.));
@@ -305,7 +306,8 @@ void test_settings_from_named_parameters()
              s.force_tolerance == 1e-3 && s.steady_iterations == 3 && s.mesh_resolution == 7 &&
              s.projection_iterations == 9 && s.subset_size == 123 && s.random_seed == 5 && s.rigid_first &&
              s.rigid_iterations == 4 && s.robust_weighting == BS::Robust_weighting::Cauchy &&
-             s.maximum_size_factor == 2.5 && s.placement_stiffness == 0.5 && s.maximum_running_time == 3.,
+             s.maximum_size_factor == 2.5 && s.placement_stiffness == 0.5 && s.maximum_running_time == 3. &&
+             s.number_of_threads == 3,
            "a named parameter did not reach its setting");
 }
 

@@ -77,6 +77,10 @@ struct Fitting_settings
   double placement_stiffness = 0.01;
   /// Seconds (named parameter `CGAL::parameters::maximum_running_time`).
   double maximum_running_time = HUGE_VAL;
+  /// Threads of the closest-point sweeps and of the assembly of the normal
+  /// equations (with TBB; without, the fit runs on one core): 0 for all
+  /// cores. The results are bit-identical whatever the number.
+  std::size_t number_of_threads = 0;
 };
 
 /*!
