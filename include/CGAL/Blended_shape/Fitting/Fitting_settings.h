@@ -105,7 +105,9 @@ Fitting_settings settings_from_named_parameters(const NamedParameters& np = CGAL
   // the package's, one per member of the same name (internal/parameter_names.h)
 #define CGAL_BLENDED_SHAPE_PARAMETER(NAME)
 #define CGAL_BLENDED_SHAPE_FITTING_SETTING(NAME) s.NAME = choose_parameter(get_parameter(np, internal_np::NAME), s.NAME);
+#ifndef DOXYGEN_RUNNING // the manual leaves internal/ out: Doxygen would not find the list
 #include <CGAL/Blended_shape/internal/parameter_names.h>
+#endif
 #undef CGAL_BLENDED_SHAPE_FITTING_SETTING
 #undef CGAL_BLENDED_SHAPE_PARAMETER
   return s;
