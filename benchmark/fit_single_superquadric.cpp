@@ -5,8 +5,12 @@
 // 0.2 % of the bounding-box diagonal, for 2k / 20k / 200k points with the
 // default (Gauss-Newton) integrator and 2k points with the explicit one. Prints a Markdown table (also to --output FILE).
 //
-//   fit_single_superquadric [--quick] [--output FILE]
+//   fit_single_superquadric [--quick] [--points N] [--threads N] [--output FILE]
 //   fit_single_superquadric --equivariance N [--output FILE]
+//
+// --points N: only the clouds of N points (2000, 20000 or 200000).
+// --threads N: the fits on N threads (Fitting_settings::number_of_threads;
+// default 0, all cores): the results are the same, only the times change.
 //
 // With --equivariance, it fits N random full views of 2000 points twice, as
 // sampled and rotated, translated and scaled by 3.7, and reports how far the
@@ -56,6 +60,7 @@ struct Config
   bool single_view;
   BS::Integrator integrator;
   int shapes;
+  std::size_t threads;
 };
 
 Fit_outcome fit_one(const Config& c, unsigned int shape_seed)
@@ -65,7 +70,8 @@ Fit_outcome fit_one(const Config& c, unsigned int shape_seed)
   double sigma = 0.;
   const auto pts = BS::testing::synthetic_scan(truth, c.points, c.single_view, 0.002, rng, &sigma);
   const std::size_t limit = c.integrator == BS::Integrator::Explicit ? 3000 : 200;
-  const auto r = BS::fit_superquadric(pts, BS::parameters::integrator(c.integrator).number_of_iterations(limit));
+  const auto r = BS::fit_superquadric(
+    pts, BS::parameters::number_of_threads(c.threads, BS::parameters::integrator(c.integrator)).number_of_iterations(limit));
   Fit_outcome o;
   o.iterations = r.metrics.iterations;
   o.seconds = r.metrics.seconds;
@@ -138,16 +144,21 @@ int main(int argc, char** argv)
 {
   bool quick = false;
   int equivariance = 0;
+  std::size_t only_points = 0, threads = 0;
   std::string output;
   for(int i = 1; i < argc; ++i)
   {
     if(std::strcmp(argv[i], "--quick") == 0) quick = true;
     else if(std::strcmp(argv[i], "--output") == 0 && i + 1 < argc) output = argv[++i];
+    else if(std::strcmp(argv[i], "--points") == 0 && i + 1 < argc && std::atoi(argv[i + 1]) > 0)
+      only_points = std::size_t(std::atoi(argv[++i]));
+    else if(std::strcmp(argv[i], "--threads") == 0 && i + 1 < argc && std::atoi(argv[i + 1]) >= 0)
+      threads = std::size_t(std::atoi(argv[++i]));
     else if(std::strcmp(argv[i], "--equivariance") == 0 && i + 1 < argc && std::atoi(argv[i + 1]) > 0)
       equivariance = std::atoi(argv[++i]);
     else
     {
-      std::cerr << "usage: fit_single_superquadric [--quick] [--output FILE]\n"
+      std::cerr << "usage: fit_single_superquadric [--quick] [--points N] [--threads N] [--output FILE]\n"
                    "       fit_single_superquadric --equivariance N [--output FILE]\n";
       return 2;
     }
@@ -161,21 +172,22 @@ int main(int argc, char** argv)
   std::vector<Config> configs;
   for(std::size_t n : {std::size_t(2000), std::size_t(20000), std::size_t(200000)})
   {
-    if(quick && n > 20000) continue;
+    if((quick && n > 20000) || (only_points != 0 && n != only_points)) continue;
     // 100 fits at 2k points: enough to see how often a fit ends in a wrong
     // rest state (the last column), which is about 1 in 100 for single views.
     const int shapes = n == 2000 ? 100 : (n == 20000 ? 4 : 2);
     for(bool single : {false, true})
     {
-      configs.push_back({n, single, BS::Integrator::Gauss_newton, quick ? 2 : shapes});
+      configs.push_back({n, single, BS::Integrator::Gauss_newton, quick ? 2 : shapes, threads});
       // The explicit integrator needs 1000 to 2000 iterations: at 2k points
       // that already takes a minute a fit, at 20k about ten.
       if(n == 2000)
-        configs.push_back({n, single, BS::Integrator::Explicit, quick ? 1 : 3});
+        configs.push_back({n, single, BS::Integrator::Explicit, quick ? 1 : 3, threads});
     }
   }
   std::ostringstream table;
-  table << "Machine: " << BB::machine_description() << "\n\n"
+  table << "Machine: " << BB::machine_description() << "; threads: "
+        << (threads == 0 ? std::string("all cores") : std::to_string(threads)) << "\n\n"
         << "| points | view | integrator | fits | iterations (mean) | ms / iteration | total ms (median / max) "
            "| peak MiB (max) | relative RMS, mean of 3 (%) | RMS / noise sigma (max) | a error (max %) "
            "| e error (max) | RMS > 1.2 sigma |\n"

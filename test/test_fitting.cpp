@@ -10,6 +10,7 @@
 #include <CGAL/Blended_shape/Primitives/check_primitive.h>
 #include <blended_shape_testing/compare_superquadrics.h>
 #include <blended_shape_testing/equivariance.h>
+#include <blended_shape_testing/same_bits.h>
 #include <blended_shape_testing/synthetic_scans.h>
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
@@ -231,6 +232,36 @@ void test_determinism_and_abort(std::mt19937_64& rng)
            "aborted fit left an invalid model: " << q.transpose());
 }
 
+// Fitting_settings::number_of_threads: the whole of fit_superquadric()
+// (multi-start search, subset and all-points phases, trial sweeps) gives the
+// same bits on one thread and on two: parameters, the energy after every
+// iteration, metrics. The cloud spans several blocks of points
+// (internal::Point_blocks), so that a sum could be associated otherwise.
+template <class K>
+void test_same_bits_at_any_number_of_threads(std::mt19937_64& rng)
+{
+  using BS::testing::same_bits;
+  const Model<K> truth = random_superellipsoid<K>(rng);
+  const auto pts = scan<K>(truth, cloud_size(3000), true, 0.003, rng);
+  std::vector<double> energies[2];
+  auto fit = [&](std::size_t threads) {
+    return BS::fit_superquadric(
+      pts, BS::parameters::number_of_threads(threads).visitor(BS::testing::Energy_recorder(energies[threads - 1])));
+  };
+  const auto one = fit(1), two = fit(2);
+  const auto &a = one.metrics, &b = two.metrics;
+  BS_CHECK(same_bits(one.model.parameters(), two.model.parameters()),
+           "1 and 2 threads: parameters differ: " << std::setprecision(17) << one.model.parameters().transpose()
+                                                   << " and " << two.model.parameters().transpose());
+  BS_CHECK(same_bits(energies[0], energies[1]), "1 and 2 threads: the energies of the " << energies[0].size()
+                                                  << " and " << energies[1].size() << " iterations differ");
+  BS_CHECK(a.iterations == b.iterations && a.converged == b.converged && same_bits(a.rms, b.rms) &&
+             same_bits(a.relative_rms.data(), b.relative_rms.data(), 3),
+           "1 and 2 threads: metrics differ (" << a.iterations << " and " << b.iterations << " iterations)");
+  std::cout << "  threads: " << pts.size() << " points, " << a.iterations << " iterations, the same bits at 1 and 2"
+            << std::endl;
+}
+
 template <class K>
 void test_explicit_integrator(std::mt19937_64& rng)
 {
@@ -351,14 +382,15 @@ void test_settings_from_named_parameters()
              none.random_seed == d.random_seed && none.rigid_first == d.rigid_first &&
              none.rigid_iterations == d.rigid_iterations && none.robust_weighting == d.robust_weighting &&
              none.maximum_size_factor == d.maximum_size_factor &&
-             none.placement_stiffness == d.placement_stiffness && none.maximum_running_time == d.maximum_running_time,
+             none.placement_stiffness == d.placement_stiffness && none.maximum_running_time == d.maximum_running_time &&
+             none.number_of_threads == d.number_of_threads,
            "settings without named parameters differ from the defaults");
   const BS::Fitting_settings s = BS::settings_from_named_parameters(
     BSP::integrator(BS::Integrator::Explicit, BSP::energy_tolerance(1e-7, BSP::force_tolerance(1e-3,
     BSP::steady_iterations(std::size_t(3), BSP::mesh_resolution(7, BSP::projection_iterations(9,
     BSP::subset_size(std::size_t(123), BSP::rigid_first(true, BSP::rigid_iterations(std::size_t(4),
     BSP::robust_weighting(BS::Robust_weighting::Cauchy, BSP::maximum_size_factor(2.5,
-    BSP::placement_stiffness(0.5, BSP::rest_tolerance(1e-3)))))))))))))
+    BSP::placement_stiffness(0.5, BSP::rest_tolerance(1e-3, BSP::number_of_threads(std::size_t(3)))))))))))))))
       .number_of_iterations(std::size_t(77))
       .random_seed(5u)
       .maximum_running_time(3.));
@@ -367,7 +399,7 @@ void test_settings_from_named_parameters()
              s.projection_iterations == 9 && s.subset_size == 123 && s.random_seed == 5 && s.rigid_first &&
              s.rigid_iterations == 4 && s.robust_weighting == BS::Robust_weighting::Cauchy &&
              s.maximum_size_factor == 2.5 && s.placement_stiffness == 0.5 && s.maximum_running_time == 3. &&
-             s.rest_tolerance == 1e-3,
+             s.rest_tolerance == 1e-3 && s.number_of_threads == 3,
            "a named parameter did not reach its setting");
 }
 
@@ -383,6 +415,7 @@ void run(const char* kernel, bool full)
   test_recovery<K>(reduced ? 1 : (full ? 8 : 2), reduced ? 1 : 5, rng);
   test_equivariance<K>(reduced ? 1 : (full ? 6 : 2), rng);
   test_determinism_and_abort<K>(rng);
+  test_same_bits_at_any_number_of_threads<K>(rng);
   if(full)
     test_explicit_integrator<K>(rng);
   test_bad_input<K>();

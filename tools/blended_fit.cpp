@@ -38,6 +38,7 @@ const char* usage =
   "  --seed N             random seed for the point subsets (default 0)\n"
   "  --robust             down-weight far (stray) points with Cauchy weights\n"
   "  --explicit           use the paper's explicit integrator instead of Gauss-Newton\n"
+  "  --threads N          threads of the fit (default 0: all cores); the result does not depend on it\n"
   "  --quiet              no progress on stderr\n"
   "  --help               this text\n"
   "Exit code 0 on success, 1 on a failure (unreadable input, ...), 2 on a command-line mistake.\n"
@@ -176,7 +177,7 @@ int main(int argc, char** argv)
   return tools::run_tool("blended_fit", usage, argc, argv, options, [](const tools::Command_line& line) {
     std::string input, json, mesh, hierarchy, model_file;
     bool no_split = false, no_holes = false, quiet = false, robust = false, explicit_integrator = false;
-    std::size_t iterations = 100;
+    std::size_t iterations = 100, threads = 0;
     unsigned int seed = 0;
     for(const tools::Option& o : line.options)
     {
@@ -195,6 +196,12 @@ int main(int argc, char** argv)
         iterations = std::size_t(tools::parse_integer(a, o.value));
         if(iterations == 0 || iterations > 1000000)
           throw tools::Usage_error("--max-iterations must be in [1, 1000000]");
+      }
+      else if(a == "--threads")
+      {
+        threads = std::size_t(tools::parse_integer(a, args.value_of(a)));
+        if(threads > 4096)
+          throw tools::Usage_error("--threads must be in [0, 4096] (0: all cores)");
       }
       else if(a == "--seed")
       {
@@ -218,8 +225,9 @@ int main(int argc, char** argv)
       std::cerr << "blended_fit: read " << read.points_read << " points from '" << input << "'"
                 << (read.non_finite_dropped ? " (dropped " + std::to_string(read.non_finite_dropped) +
                                                 " with non-finite coordinates)" : std::string()) << "\n";
-    auto np = BS::parameters::robust_weighting(robust ? BS::Robust_weighting::Cauchy : BS::Robust_weighting::None,
-                BS::parameters::integrator(explicit_integrator ? BS::Integrator::Explicit : BS::Integrator::Gauss_newton))
+    auto np = BS::parameters::number_of_threads(threads,
+                BS::parameters::robust_weighting(robust ? BS::Robust_weighting::Cauchy : BS::Robust_weighting::None,
+                BS::parameters::integrator(explicit_integrator ? BS::Integrator::Explicit : BS::Integrator::Gauss_newton)))
                 .number_of_iterations(iterations)
                 .random_seed(seed);
     const Result result = quiet ? BS::fit_superquadric(points, np.visitor(Silent()))

@@ -6,6 +6,7 @@
 #include <CGAL/Blended_shape/Fitting/Closest_point_locator.h>
 #include <CGAL/Blended_shape/Fitting/Fitting_settings.h>
 #include <CGAL/Blended_shape/Fitting/Fitting_visitor.h>
+#include <CGAL/Blended_shape/Fitting/internal/Point_blocks.h>
 #include <CGAL/Blended_shape/IO/check_points.h>
 #include <CGAL/Blended_shape/internal/Parameter_table.h>
 
@@ -110,6 +111,11 @@ points until steady state: the relative energy decrease of a step is below
 `energy_tolerance` and the scaled force below `force_tolerance` for
 `steady_iterations` consecutive steps.
 
+The per-point work of (2), in every sweep, and the sums of the linear system
+of (3) run on `Fitting_settings::number_of_threads` threads (with TBB), with
+results that are bit-identical at any number of threads: the points are
+summed in fixed blocks of 256, whose sums are added in block order.
+
 \tparam Model a model of the concept `DeformableModel`: Deformable_model (one
   primitive) or Deformable_blended_model (a blended shape of fixed structure).
 */
@@ -130,7 +136,7 @@ public:
   Deformable_model_fitter(const PointRange& points, const Model& initial_model,
                           const Fitting_settings& settings = Fitting_settings(),
                           PointMap point_map = PointMap())
-    : m_model(initial_model), m_settings(settings)
+    : m_model(initial_model), m_settings(settings), m_blocks(settings.number_of_threads)
   {
     check_points(points, point_map);
     check_settings(settings);
@@ -490,42 +496,62 @@ private:
     double energy = 0.;
   };
 
+  // The sums of assemble_normal_equations() over some points (H's lower triangle).
+  struct Normal_equation_sums
+  {
+    Eigen::MatrixXd H;
+    Eigen::VectorXd g;
+    double energy = 0.;
+    Normal_equation_sums& operator+=(const Normal_equation_sums& other)
+    {
+      H += other.H;
+      g += other.g;
+      energy += other.energy;
+      return *this;
+    }
+  };
+
   Normal_equations assemble_normal_equations(const std::vector<std::size_t>& active, const Correspondences& corr) const
   {
-    const std::size_t n = m_model.number_of_parameters();
+    const Eigen::Index n = Eigen::Index(m_model.number_of_parameters());
     Normal_equations system;
-    system.H = Eigen::MatrixXd::Zero(Eigen::Index(n), Eigen::Index(n));
-    system.g = Eigen::VectorXd::Zero(Eigen::Index(n));
     system.w.resize(active.size());
-    Eigen::MatrixXd& H = system.H;
-    Eigen::VectorXd Jn(static_cast<Eigen::Index>(n));
-    std::vector<Eigen::Index> nonzero;
-    typename Model::Jacobian L;
-    for(std::size_t k = 0; k < active.size(); ++k)
-    {
-      const Point_3 x = m_model.point_and_jacobian(corr.u[k], L);
-      const double r = corr.normal[k].dot(m_points[active[k]] - Eigen::Vector3d(x.x(), x.y(), x.z()));
-      const double w = system.w[k] = weight(corr.distance[k], corr.scale);
-      Jn.noalias() = L.transpose() * corr.normal[k];
-      system.g.noalias() += (w * r) * Jn;
-      system.energy += 0.5 * w * r * r;
-      // A point of a blended model depends on the few components and blends
-      // that reach it: the outer product only over its nonzero entries.
-      nonzero.clear();
-      for(Eigen::Index i = 0; i < Jn.size(); ++i)
-        if(Jn[i] != 0.)
-          nonzero.push_back(i);
-      if(2 * nonzero.size() > n)
-        H.template selfadjointView<Eigen::Lower>().rankUpdate(Jn, w);
-      else
-        for(std::size_t a = 0; a < nonzero.size(); ++a)
-        {
-          const double wa = w * Jn[nonzero[a]];
-          for(std::size_t b = 0; b <= a; ++b)
-            H(nonzero[a], nonzero[b]) += wa * Jn[nonzero[b]];
-        }
-    }
-    H.template triangularView<Eigen::Upper>() = H.transpose();
+    const Normal_equation_sums zero{Eigen::MatrixXd::Zero(n, n), Eigen::VectorXd::Zero(n), 0.};
+    Normal_equation_sums sums = m_blocks.sum_over_blocks(active.size(), zero, [&](std::size_t first, std::size_t last) {
+      Normal_equation_sums block = zero;
+      Eigen::VectorXd Jn(n);
+      std::vector<Eigen::Index> nonzero;
+      typename Model::Jacobian L;
+      for(std::size_t k = first; k < last; ++k)
+      {
+        const Point_3 x = m_model.point_and_jacobian(corr.u[k], L);
+        const double r = corr.normal[k].dot(m_points[active[k]] - Eigen::Vector3d(x.x(), x.y(), x.z()));
+        const double w = system.w[k] = weight(corr.distance[k], corr.scale);
+        Jn.noalias() = L.transpose() * corr.normal[k];
+        block.g.noalias() += (w * r) * Jn;
+        block.energy += 0.5 * w * r * r;
+        // A point of a blended model depends on the few components and blends
+        // that reach it: the outer product only over its nonzero entries.
+        nonzero.clear();
+        for(Eigen::Index i = 0; i < n; ++i)
+          if(Jn[i] != 0.)
+            nonzero.push_back(i);
+        if(2 * Eigen::Index(nonzero.size()) > n)
+          block.H.template selfadjointView<Eigen::Lower>().rankUpdate(Jn, w);
+        else
+          for(std::size_t a = 0; a < nonzero.size(); ++a)
+          {
+            const double wa = w * Jn[nonzero[a]];
+            for(std::size_t b = 0; b <= a; ++b)
+              block.H(nonzero[a], nonzero[b]) += wa * Jn[nonzero[b]];
+          }
+      }
+      return block;
+    });
+    system.H = std::move(sums.H);
+    system.g = std::move(sums.g);
+    system.energy = sums.energy;
+    system.H.template triangularView<Eigen::Upper>() = system.H.transpose();
     return system;
   }
 
@@ -636,15 +662,19 @@ private:
     m_start_points.resize(active.size());
     m_start_jacobians.resize(active.size());
     m_start_valid.assign(active.size(), false);
-    for(std::size_t k = 0; k < active.size(); ++k)
-    {
-      Chart_point cu;
-      const Chart_point& u = corr.u[k];
-      m_start_valid[k] = trial.canonical_surface_point(u, cu) && cu.chart == u.chart && cu.x == u.x && cu.y == u.y;
-      const Point_3 x = m_start_valid[k] ? trial.point_and_chart_jacobian(u, m_start_jacobians[k]) : trial.point(u);
-      m_start_points[k] = Eigen::Vector3d(x.x(), x.y(), x.z());
-      E1 += 0.5 * trials.system.w[k] * CGAL::square(corr.normal[k].dot(m_points[active[k]] - m_start_points[k]));
-    }
+    E1 += m_blocks.sum_over_blocks(active.size(), 0., [&](std::size_t first, std::size_t last) {
+      double e = 0.;
+      for(std::size_t k = first; k < last; ++k)
+      {
+        Chart_point cu;
+        const Chart_point& u = corr.u[k];
+        m_start_valid[k] = trial.canonical_surface_point(u, cu) && cu.chart == u.chart && cu.x == u.x && cu.y == u.y;
+        const Point_3 x = m_start_valid[k] ? trial.point_and_chart_jacobian(u, m_start_jacobians[k]) : trial.point(u);
+        m_start_points[k] = Eigen::Vector3d(x.x(), x.y(), x.z());
+        e += 0.5 * trials.system.w[k] * CGAL::square(corr.normal[k].dot(m_points[active[k]] - m_start_points[k]));
+      }
+      return e;
+    });
     const double E0 = trials.system.energy;
     if(!(E1 <= E0))
       return false;
@@ -846,12 +876,13 @@ private:
     // energy tolerance can see); the foot points themselves to ~1e-6 of the distance.
     const double tolerance = 1e-12;
     const double spacing2 = 1. / CGAL::square(double(m_settings.mesh_resolution)); // squared chart distance
-    Located_point<Geom_traits> loc;
-    for(std::size_t k = 0; k < active.size(); ++k)
-    {
+    // The tree is rebuilt here, before the parallel sweep, which only reads it.
+    const Closest_point_locator<Geom_traits>& search = locator();
+    m_blocks.for_each_point(active.size(), [&](std::size_t k) {
       const Eigen::Vector3d& p = m_points[active[k]];
       const Point_3 query(p[0], p[1], p[2]);
       internal::Foot_point foot;
+      Located_point<Geom_traits> loc;
       if(previous != nullptr && model.is_on_surface(previous->u[k]))
       {
         foot = (evaluated && m_start_valid[k])
@@ -862,9 +893,9 @@ private:
         // (in the same chart) leads back to the same foot point: only one
         // farther away can lead to another one.
         if(search_everywhere)
-          loc = locator().locate(query);
+          loc = search.locate(query);
         if(search_everywhere ||
-           (locator().locate_closer_than(query, Point_3(foot.x[0], foot.x[1], foot.x[2]), loc) &&
+           (search.locate_closer_than(query, Point_3(foot.x[0], foot.x[1], foot.x[2]), loc) &&
             !(loc.chart_point.chart == foot.u.chart &&
               CGAL::square(loc.chart_point.x - foot.u.x) + CGAL::square(loc.chart_point.y - foot.u.y) <= spacing2)))
         {
@@ -875,13 +906,13 @@ private:
         }
       }
       else // no previous foot point, or it left the surface of a blended model
-        foot = internal::refine_foot_point(model, p, projection_start(locator().locate(query), model), iterations,
+        foot = internal::refine_foot_point(model, p, projection_start(search.locate(query), model), iterations,
                                            tolerance);
       c.u[k] = foot.u;
       const Vector_3 nv = model.normal(foot.u);
       c.normal[k] = Eigen::Vector3d(nv.x(), nv.y(), nv.z());
       c.distance[k] = std::sqrt(foot.squared_distance);
-    }
+    });
     if(m_settings.robust_weighting == Robust_weighting::Cauchy && !active.empty())
     {
       std::vector<double> sorted = c.distance;
@@ -942,6 +973,7 @@ private:
 
   Model m_model;
   Fitting_settings m_settings;
+  internal::Point_blocks m_blocks; // runs the per-point loops of the sweeps and the assembly
   std::vector<Eigen::Vector3d> m_points;
   double m_diagonal = 0.;  // of the bounding box: for the metrics
   double m_diameter = 0.;  // about the centroid: the rotation-invariant length scale
@@ -951,7 +983,7 @@ private:
   bool m_tree_outdated = false; // the meshes moved since the locator's tree was built
   std::vector<Eigen::Vector3d> m_start_points;                     // see attach()
   std::vector<typename Model::Chart_jacobian> m_start_jacobians;  // see attach()
-  std::vector<bool> m_start_valid;                                 // see attach()
+  std::vector<unsigned char> m_start_valid; // see attach(); not vector<bool>: written by several threads
   std::vector<std::size_t> m_all, m_subset;
   bool m_use_all = true;
   std::vector<bool> m_active_parameters;

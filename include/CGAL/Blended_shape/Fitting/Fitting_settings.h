@@ -85,6 +85,10 @@ struct Fitting_settings
   double placement_stiffness = 0.01;
   /// Seconds (named parameter `CGAL::parameters::maximum_running_time`).
   double maximum_running_time = HUGE_VAL;
+  /// Threads of the closest-point sweeps and of the assembly of the normal
+  /// equations (with TBB; without, the fit runs on one core): 0 for all
+  /// cores. The results are bit-identical whatever the number.
+  std::size_t number_of_threads = 0;
 };
 
 /*!
@@ -109,7 +113,9 @@ Fitting_settings settings_from_named_parameters(const NamedParameters& np = CGAL
   // the package's, one per member of the same name (internal/parameter_names.h)
 #define CGAL_BLENDED_SHAPE_PARAMETER(NAME)
 #define CGAL_BLENDED_SHAPE_FITTING_SETTING(NAME) s.NAME = choose_parameter(get_parameter(np, internal_np::NAME), s.NAME);
+#ifndef DOXYGEN_RUNNING // the manual leaves internal/ out: Doxygen would not find the list
 #include <CGAL/Blended_shape/internal/parameter_names.h>
+#endif
 #undef CGAL_BLENDED_SHAPE_FITTING_SETTING
 #undef CGAL_BLENDED_SHAPE_PARAMETER
   return s;

@@ -19,6 +19,7 @@ CGAL_BLENDED_SHAPE_FITTING_SETTING(rigid_iterations)
 CGAL_BLENDED_SHAPE_FITTING_SETTING(robust_weighting)
 CGAL_BLENDED_SHAPE_FITTING_SETTING(maximum_size_factor)
 CGAL_BLENDED_SHAPE_FITTING_SETTING(placement_stiffness)
+CGAL_BLENDED_SHAPE_FITTING_SETTING(number_of_threads)
 // fit_superquadric() alone
 CGAL_BLENDED_SHAPE_PARAMETER(reference_mesh)
 CGAL_BLENDED_SHAPE_PARAMETER(try_all_axes)
