@@ -309,9 +309,9 @@ private:
   static const std::array<Parameter_info, number_of_parameters>& table()
   {
     static const std::array<Parameter_info, number_of_parameters> t = {{
-      {"a1", 1e-9, HUGE_VAL, 1., Parameter_kind::Length},
-      {"a2", 1e-9, HUGE_VAL, 1., Parameter_kind::Length},
-      {"a3", 1e-9, HUGE_VAL, 1., Parameter_kind::Length},
+      {"a1", smallest_size, HUGE_VAL, 1., Parameter_kind::Length},
+      {"a2", smallest_size, HUGE_VAL, 1., Parameter_kind::Length},
+      {"a3", smallest_size, HUGE_VAL, 1., Parameter_kind::Length},
       {"e1", 0.01, 2., 1., Parameter_kind::Dimensionless},
       {"e2", 0.01, 2., 1., Parameter_kind::Dimensionless}}};
     return t;
