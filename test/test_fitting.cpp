@@ -297,7 +297,7 @@ void test_settings_from_named_parameters()
     BSP::steady_iterations(std::size_t(3), BSP::mesh_resolution(7, BSP::projection_iterations(9,
     BSP::subset_size(std::size_t(123), BSP::rigid_first(true, BSP::rigid_iterations(std::size_t(4),
     BSP::robust_weighting(BS::Robust_weighting::Cauchy, BSP::maximum_size_factor(2.5,
-    BSP::placement_stiffness(0.5)))))))))))))
+    BSP::placement_stiffness(0.5))))))))))))
       .number_of_iterations(std::size_t(77))
       .random_seed(5u)
       .maximum_running_time(3.));
