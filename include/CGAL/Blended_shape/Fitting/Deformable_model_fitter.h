@@ -378,15 +378,29 @@ public:
   /// The input points, as read (in their original order).
   const std::vector<Eigen::Vector3d>& points() const { return m_points; }
 
+  /// The smallest size (a shape length bounded below by 0 or more, e.g. a
+  /// semi-axis) a fit gives, relative to the diameter of the points about
+  /// their centroid (see Fitting_settings::maximum_size_factor for the largest).
+  static constexpr double minimum_size_ratio = 1e-9;
+
 private:
-  // The model's bounds, with shape lengths also capped by the data's size.
-  double lower_bound(std::size_t i) const { return m_model.parameter_lower_bound(i); }
+  // The model's bounds, with shape lengths also bounded by the data's size:
+  // sizes (lengths bounded below by 0 or more) from minimum_size_ratio times
+  // it (a size shrinking to nothing would make the normals overflow), lengths
+  // up to maximum_size_factor times it.
+  double lower_bound(std::size_t i) const
+  {
+    const double b = m_model.parameter_lower_bound(i);
+    return is_shape_length(i) && b >= 0. ? (std::max)(b, minimum_size_ratio * m_diameter) : b;
+  }
   double upper_bound(std::size_t i) const
   {
     const double b = m_model.parameter_upper_bound(i);
-    if(m_model.is_pose_parameter(i) || m_model.parameter_kind(i) != Parameter_kind::Length)
-      return b;
-    return (std::min)(b, m_settings.maximum_size_factor * m_diameter);
+    return is_shape_length(i) ? (std::min)(b, m_settings.maximum_size_factor * m_diameter) : b;
+  }
+  bool is_shape_length(std::size_t i) const
+  {
+    return !m_model.is_pose_parameter(i) && m_model.parameter_kind(i) == Parameter_kind::Length;
   }
 
   // Closest points of the points `active` on `model`: chart points, normals

@@ -15,8 +15,9 @@ namespace CGAL {
 namespace Blended_shapes {
 namespace internal {
 
-/// A semi-axis scale `a1`, `a2` or `a3`: a positive length.
-inline Parameter_info semi_axis(const char* name) { return {name, 1e-9, HUGE_VAL, 1., Parameter_kind::Length}; }
+/// A semi-axis scale `a1`, `a2` or `a3`: a positive length (any: the fitter
+/// bounds sizes relative to the data, see Fitting_settings).
+inline Parameter_info semi_axis(const char* name) { return {name, smallest_size, HUGE_VAL, 1., Parameter_kind::Length}; }
 /// A ring ratio `a4` or `a5` of the toroid: at least 1 (the hole closes at 1).
 inline Parameter_info ring_ratio(const char* name, double default_value)
 {
