@@ -172,7 +172,7 @@ struct Silent : BS::Default_fitting_visitor {};
 
 int main(int argc, char** argv)
 {
-  const auto options = tools::known_options({"--json", "--mesh", "--hierarchy", "--model", "--max-iterations", "--seed"},
+  const auto options = tools::known_options({"--json", "--mesh", "--hierarchy", "--model", "--max-iterations", "--seed", "--threads"},
                                             {"--no-split", "--no-holes", "--quiet", "--robust", "--explicit"});
   return tools::run_tool("blended_fit", usage, argc, argv, options, [](const tools::Command_line& line) {
     std::string input, json, mesh, hierarchy, model_file;
@@ -199,7 +199,7 @@ int main(int argc, char** argv)
       }
       else if(a == "--threads")
       {
-        threads = std::size_t(tools::parse_integer(a, args.value_of(a)));
+        threads = std::size_t(tools::parse_integer(a, o.value));
         if(threads > 4096)
           throw tools::Usage_error("--threads must be in [0, 4096] (0: all cores)");
       }
