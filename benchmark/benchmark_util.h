@@ -31,7 +31,7 @@ inline std::string machine_description()
       break;
     }
   std::ostringstream s;
-  s << model << ", " << std::thread::hardware_concurrency() << " cores visible (one used), g++ " << __VERSION__
+  s << model << ", " << std::thread::hardware_concurrency() << " cores visible, g++ " << __VERSION__
     << ", CGAL " << CGAL_VERSION_STR
 #ifdef NDEBUG
     << ", Release";

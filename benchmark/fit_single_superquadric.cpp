@@ -5,9 +5,13 @@
 // 0.2 % of the bounding-box diagonal, for 2k / 20k / 200k points with the
 // default (Gauss-Newton) integrator and 2k points with the explicit one. Prints a Markdown table (also to --output FILE).
 //
-//   fit_single_superquadric [--quick] [--output FILE]
+//   fit_single_superquadric [--quick] [--points N] [--threads N] [--output FILE]
 //   fit_single_superquadric --equivariance N [--output FILE]
 //   fit_single_superquadric --outliers FRACTION --outlier-box FACTOR [--fits N] [--output FILE]
+//
+// --points N: only the clouds of N points (2000, 20000 or 200000).
+// --threads N: the fits on N threads (Fitting_settings::number_of_threads;
+// default 0, all cores): the results are the same, only the times change.
 //
 // With --equivariance, it fits N random full views of 2000 points twice, as
 // sampled and rotated, translated and scaled by 3.7, and reports how far the
@@ -64,6 +68,7 @@ struct Config
   bool single_view;
   BS::Integrator integrator;
   int shapes;
+  std::size_t threads;
 };
 
 Fit_outcome fit_one(const Config& c, unsigned int shape_seed)
@@ -73,7 +78,8 @@ Fit_outcome fit_one(const Config& c, unsigned int shape_seed)
   double sigma = 0.;
   const auto pts = BS::testing::synthetic_scan(truth, c.points, c.single_view, 0.002, rng, &sigma);
   const std::size_t limit = c.integrator == BS::Integrator::Explicit ? 3000 : 200;
-  const auto r = BS::fit_superquadric(pts, BS::parameters::integrator(c.integrator).number_of_iterations(limit));
+  const auto r = BS::fit_superquadric(
+    pts, BS::parameters::number_of_threads(c.threads, BS::parameters::integrator(c.integrator)).number_of_iterations(limit));
   Fit_outcome o;
   o.iterations = r.metrics.iterations;
   o.seconds = r.metrics.seconds;
@@ -149,7 +155,7 @@ struct Outlier_outcome
 };
 
 // See the header: one row for `fits` clouds with `fraction` strays over `box` times the box.
-std::string outlier_row(double fraction, double box, int fits)
+std::string outlier_row(double fraction, double box, int fits, std::size_t threads)
 {
   typedef BS::Deformable_model<BS::Superquadric_ellipsoid<K>> Model;
   const std::size_t total = 6000, strays = std::size_t(std::lround(fraction * double(total)));
@@ -164,7 +170,7 @@ std::string outlier_row(double fraction, double box, int fits)
       const auto inliers = BS::testing::synthetic_scan(truth, total - strays, false, 0.002, rng);
       auto pts = inliers;
       BS::testing::add_stray_points(pts, strays, box, rng);
-      const auto r = BS::fit_superquadric(pts);
+      const auto r = BS::fit_superquadric(pts, BS::parameters::number_of_threads(threads));
       BS::Deformable_model_fitter<Model> probe(inliers, r.model); // the true points' distances to the fit
       Outlier_outcome out{std::sqrt(probe.mean_squared_distance(true)) / BS::testing::bounding_box_diagonal(inliers),
                           r.metrics.seconds, 0, 0};
@@ -193,11 +199,16 @@ int main(int argc, char** argv)
   bool quick = false;
   int equivariance = 0, fits = 10;
   double outliers = -1., outlier_box = 2.;
+  std::size_t only_points = 0, threads = 0;
   std::string output;
   for(int i = 1; i < argc; ++i)
   {
     if(std::strcmp(argv[i], "--quick") == 0) quick = true;
     else if(std::strcmp(argv[i], "--output") == 0 && i + 1 < argc) output = argv[++i];
+    else if(std::strcmp(argv[i], "--points") == 0 && i + 1 < argc && std::atoi(argv[i + 1]) > 0)
+      only_points = std::size_t(std::atoi(argv[++i]));
+    else if(std::strcmp(argv[i], "--threads") == 0 && i + 1 < argc && std::atoi(argv[i + 1]) >= 0)
+      threads = std::size_t(std::atoi(argv[++i]));
     else if(std::strcmp(argv[i], "--equivariance") == 0 && i + 1 < argc && std::atoi(argv[i + 1]) > 0)
       equivariance = std::atoi(argv[++i]);
     else if(std::strcmp(argv[i], "--outliers") == 0 && i + 1 < argc && std::atof(argv[i + 1]) >= 0. &&
@@ -209,10 +220,10 @@ int main(int argc, char** argv)
       fits = std::atoi(argv[++i]);
     else
     {
-      std::cerr << "usage: fit_single_superquadric [--quick] [--output FILE]\n"
+      std::cerr << "usage: fit_single_superquadric [--quick] [--points N] [--threads N] [--output FILE]\n"
                    "       fit_single_superquadric --equivariance N [--output FILE]\n"
                    "       fit_single_superquadric --outliers FRACTION --outlier-box FACTOR [--fits N] "
-                   "[--output FILE]\n";
+                   "[--threads N] [--output FILE]\n";
       return 2;
     }
   }
@@ -221,7 +232,7 @@ int main(int argc, char** argv)
     const std::string table = "| strays | box | fits | true points' RMS / diagonal, % (median / max) "
                               "| seconds (median / max) | strays found (mean) | inliers judged stray (mean) |\n"
                               "|---:|---:|---:|---:|---:|---:|---:|\n" +
-                              outlier_row(outliers, outlier_box, fits);
+                              outlier_row(outliers, outlier_box, fits, threads);
     std::cout << "Machine: " << BB::machine_description() << "\n\n" << table;
     return write_table(output, table);
   }
@@ -234,21 +245,22 @@ int main(int argc, char** argv)
   std::vector<Config> configs;
   for(std::size_t n : {std::size_t(2000), std::size_t(20000), std::size_t(200000)})
   {
-    if(quick && n > 20000) continue;
+    if((quick && n > 20000) || (only_points != 0 && n != only_points)) continue;
     // 100 fits at 2k points: enough to see how often a fit ends in a wrong
     // rest state (the last column), which is about 1 in 100 for single views.
     const int shapes = n == 2000 ? 100 : (n == 20000 ? 4 : 2);
     for(bool single : {false, true})
     {
-      configs.push_back({n, single, BS::Integrator::Gauss_newton, quick ? 2 : shapes});
+      configs.push_back({n, single, BS::Integrator::Gauss_newton, quick ? 2 : shapes, threads});
       // The explicit integrator needs 1000 to 2000 iterations: at 2k points
       // that already takes a minute a fit, at 20k about ten.
       if(n == 2000)
-        configs.push_back({n, single, BS::Integrator::Explicit, quick ? 1 : 3});
+        configs.push_back({n, single, BS::Integrator::Explicit, quick ? 1 : 3, threads});
     }
   }
   std::ostringstream table;
-  table << "Machine: " << BB::machine_description() << "\n\n"
+  table << "Machine: " << BB::machine_description() << "; threads: "
+        << (threads == 0 ? std::string("all cores") : std::to_string(threads)) << "\n\n"
         << "| points | view | integrator | fits | iterations (mean) | ms / iteration | total ms (median / max) "
            "| peak MiB (max) | relative RMS, mean of 3 (%) | RMS / noise sigma (max) | a error (max %) "
            "| e error (max) | RMS > 1.2 sigma |\n"

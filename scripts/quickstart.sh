@@ -7,7 +7,8 @@ SUDO=""
 if [ "$(id -u)" -ne 0 ]; then SUDO="sudo"; fi
 $SUDO apt-get update
 DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y --no-install-recommends \
-  cmake make g++ libcgal-dev libeigen3-dev libboost-dev libboost-graph-dev libgmp-dev libmpfr-dev
+  cmake make g++ libcgal-dev libeigen3-dev libboost-dev libboost-graph-dev libgmp-dev libmpfr-dev \
+  libboost-program-options-dev nlohmann-json3-dev libtbb-dev
 cmake -S . -B build -DCMAKE_BUILD_TYPE=Release
 cmake --build build -j2 --target blended_fit
 build/bin/blended_fit data/scans/pcl_mug_scan.xyz

@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: LGPL-3.0-or-later
 // The blended_fit tool: bad input exits non-zero with a message and writes
 // nothing; a good run writes valid JSON with every documented key, and the
-// mesh, hierarchy and model files.
+// mesh, hierarchy and model files; the fit is the same at any scale and place.
 #include "test_util.h"
 #include "tool_test_util.h"
 
@@ -11,6 +11,7 @@
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 
 #include <cctype>
+#include <cmath>
 #include <fstream>
 #include <map>
 #include <random>
@@ -139,11 +140,13 @@ std::string read_file(const std::string& name)
   return s.str();
 }
 
-void write_points(const std::string& file, const std::vector<K::Point_3>& pts)
+// 17 digits: every double is read back exactly.
+void write_points(const std::string& file, const std::vector<K::Point_3>& pts, double scale = 1.,
+                  const K::Vector_3& offset = K::Vector_3(0., 0., 0.))
 {
   std::ofstream out(file);
   out.precision(17);
-  for(const auto& p : pts) out << p << '\n';
+  for(const auto& p : pts) out << K::Point_3(scale * p.x(), scale * p.y(), scale * p.z()) + offset << '\n';
 }
 
 void test_json_checker()
@@ -267,6 +270,47 @@ void test_strays(const Temp_dir& dir)
   blended_shape_test::report("blended_fit_strays");
 }
 
+// The same cloud scaled by 1e-12 and 1e12, or moved by 1e15 (exactly: its
+// coordinates on the grid of doubles there), fits the same, relatively; at
+// 1e300 the tool fails with a clear message and writes nothing.
+void test_any_scale(const Temp_dir& dir)
+{
+  std::mt19937_64 rng(5);
+  const auto model = BS::testing::random_superellipsoid<K>(rng);
+  std::vector<K::Point_3> cloud;
+  for(const auto& p : BS::testing::synthetic_scan(model, 500, true, 0.002, rng))
+    cloud.emplace_back(std::round(p.x() * 8e6) / 8., std::round(p.y() * 8e6) / 8., std::round(p.z() * 8e6) / 8.);
+  auto fit = [&](double scale, const K::Vector_3& offset, std::string* err) {
+    write_points(dir / "scaled.xyz", cloud, scale, offset);
+    std::string out;
+    const int code = run(quote(tool) + " " + quote(dir / "scaled.xyz") + " --quiet", dir, err, &out);
+    Json_checker summary(out);
+    BS_CHECK(code == 0 || summary.valid() || out.empty(), "exit " << code << " with output " << out);
+    return code == 0 && summary.valid() ? summary.numbers : std::map<std::string, double>();
+  };
+  std::string err;
+  const auto unit = fit(1., K::Vector_3(0., 0., 0.), &err);
+  BS_CHECK(!unit.empty(), "unit cloud: " << err);
+  struct Case { double scale; K::Vector_3 offset; };
+  for(const Case& c : {Case{1e-12, K::Vector_3(0., 0., 0.)}, Case{1e12, K::Vector_3(0., 0., 0.)},
+                       Case{1., K::Vector_3(1e15, -1e15, 0.5e15)}})
+  {
+    const auto scaled = fit(c.scale, c.offset, &err);
+    BS_CHECK(!scaled.empty(), "scale " << c.scale << ", offset " << c.offset << ": " << err);
+    if(scaled.empty() || unit.empty())
+      continue;
+    BS_CHECK(std::abs(scaled.at("rms_over_bbox_diagonal") / unit.at("rms_over_bbox_diagonal") - 1.) < 1e-6 &&
+               std::abs(scaled.at("rms") / (c.scale * unit.at("rms")) - 1.) < 1e-6,
+             "scale " << c.scale << ", offset " << c.offset << ": rms " << scaled.at("rms") << " vs "
+                      << c.scale * unit.at("rms"));
+  }
+  const std::size_t files = dir.number_of_files();
+  BS_CHECK(fit(1e300, K::Vector_3(0., 0., 0.), &err).empty() && err.find("beyond 1e+150") != std::string::npos &&
+             err.find("nan") == std::string::npos && dir.number_of_files() == files,
+           "1e300: " << err);
+  blended_shape_test::report("blended_fit_any_scale");
+}
+
 } // namespace
 
 int main()
@@ -276,6 +320,7 @@ int main()
   test_bad_input(dir);
   test_good_run(dir);
   test_strays(dir);
+  test_any_scale(dir);
   blended_shape_test::report("test_blended_fit");
   return blended_shape_test::exit_code();
 }

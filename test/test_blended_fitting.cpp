@@ -11,11 +11,13 @@
 #include <CGAL/Blended_shape/Fitting/Deformable_model_fitter.h>
 #include <CGAL/Blended_shape/Fitting/Deformable_blended_model.h>
 #include <CGAL/Blended_shape/Fitting/sample_model.h>
+#include <blended_shape_testing/same_bits.h>
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Simple_cartesian.h>
 
 #include <algorithm>
+#include <memory>
 #include <random>
 #include <sstream>
 
@@ -430,6 +432,41 @@ void test_restructure(const Model<K>& truth)
             << " steps differ from a new fitter's" << std::endl;
 }
 
+// Fitting_settings::number_of_threads: a blended model's fit (Cauchy
+// weights, subset then all points, trial sweeps, the recheck at rest) gives
+// the same bits on one thread and on two: parameters, the energy after every
+// iteration, the final distance. The points span several blocks
+// (internal::Point_blocks), so that a sum could be associated otherwise.
+template <class K>
+void test_same_bits_at_any_number_of_threads(const Model<K>& truth)
+{
+  using BS::testing::same_bits;
+  double sigma, diagonal;
+  const auto pts = noisy_samples<K>(truth, reduced ? 800 : 2000, 0.002, 41, sigma, diagonal);
+  BS::Fitting_settings settings;
+  settings.subset_size = 600;
+  settings.maximum_iterations = reduced ? 6 : 20;
+  settings.robust_weighting = BS::Robust_weighting::Cauchy;
+  std::vector<double> energies[2];
+  std::vector<std::unique_ptr<BS::Deformable_model_fitter<Model<K>>>> fitters;
+  std::vector<BS::Fitting_status> status;
+  for(std::size_t threads : {1, 2})
+  {
+    settings.number_of_threads = threads;
+    fitters.push_back(std::make_unique<BS::Deformable_model_fitter<Model<K>>>(pts, perturbed(truth, 1.), settings));
+    status.push_back(fitters.back()->run(BS::testing::Energy_recorder(energies[threads - 1])));
+  }
+  BS_CHECK(same_bits(fitters[0]->model().parameters(), fitters[1]->model().parameters()),
+           "1 and 2 threads: parameters differ");
+  BS_CHECK(status[0].iterations == status[1].iterations && same_bits(energies[0], energies[1]),
+           "1 and 2 threads: the energies of the " << energies[0].size() << " and " << energies[1].size()
+                                                    << " iterations differ");
+  BS_CHECK(same_bits(fitters[0]->mean_squared_distance(true), fitters[1]->mean_squared_distance(true)),
+           "1 and 2 threads: final distances differ");
+  std::cout << "  threads: " << pts.size() << " points, " << status[0].iterations
+            << " iterations, the same bits at 1 and 2" << std::endl;
+}
+
 template <class K>
 void run(const char* kernel)
 {
@@ -446,6 +483,7 @@ void run(const char* kernel)
   test_recovery<K>("body with nose", nose, 1., true);
   test_recovery<K>("body with hole", hole, 0.5, false);
   test_restructure<K>(nose);
+  test_same_bits_at_any_number_of_threads<K>(nose);
   std::cout << "blended fitting with " << kernel
             << (blended_shape_test::failures() == before ? ": SUCCESS" : ": FAILED") << std::endl;
 }

@@ -10,7 +10,7 @@
 
 #include <CGAL/Blended_shape/Blending/Blended_shape.h>
 #include <CGAL/Blended_shape/IO/Blended_shape_io.h>
-#include <CGAL/Blended_shape/IO/internal/json.h>
+#include <CGAL/Blended_shape/IO/internal/json_text.h>
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Simple_cartesian.h>
@@ -37,7 +37,7 @@
 #include <vector>
 
 namespace BS = CGAL::Blended_shapes;
-namespace json = CGAL::Blended_shapes::internal::json;
+namespace json = CGAL::Blended_shapes::internal; // the JSON layer: json_text.h
 
 namespace {
 
@@ -64,15 +64,15 @@ bool contains(const std::string& s, const std::string& fragment) { return s.find
 
 double parse_number_text(const std::string& t)
 {
-  const json::Value v = json::parse(t);
-  if(v.type() != json::Type::Number)
+  const json::Json v = json::parse_json(t);
+  if(!v.is_number())
     throw std::logic_error("not a number");
-  return v.as_number();
+  return v.get<double>();
 }
 
 void check_number_round_trip(double x)
 {
-  const std::string t = json::format_number(x);
+  const std::string t = json::json_number_text(x);
   const double y = parse_number_text(t);
   BS_CHECK(same_bits(x, y), "number " << t << " does not read back bit for bit");
   // 17 significant digits read back too.
@@ -92,7 +92,7 @@ std::string parse_error_of(F f)
   {
     f();
   }
-  catch(const json::Parse_error& e)
+  catch(const json::Json_syntax_error& e)
   {
     return e.what();
   }
@@ -105,8 +105,8 @@ void test_json()
   for(double x : {0., -0., 1., -1., 0.1, 1. / 3., 2. / 3., M_PI, 1e-300, -1e300, DBL_MAX, -DBL_MAX, DBL_MIN,
                   std::numeric_limits<double>::denorm_min(), 5e-324, 123456789012345678., 1e21, 1e22, 9007199254740993.})
     check_number_round_trip(x);
-  BS_CHECK(std::signbit(parse_number_text(json::format_number(-0.))), "-0 loses its sign: " << json::format_number(-0.));
-  BS_CHECK(json::format_number(-0.) == "-0", "-0 is written " << json::format_number(-0.));
+  BS_CHECK(std::signbit(parse_number_text(json::json_number_text(-0.))), "-0 loses its sign: " << json::json_number_text(-0.));
+  BS_CHECK(json::json_number_text(-0.) == "-0", "-0 is written " << json::json_number_text(-0.));
   std::uniform_int_distribution<std::uint64_t> bits;
   for(int k = 0; k < 20000; ++k)
   {
@@ -127,7 +127,7 @@ void test_json()
     {
       check_number_round_trip(0.1);
       check_number_round_trip(-1234.5678);
-      BS_CHECK(json::format_number(0.5) == "0.5", "locale " << name << " changes the output: " << json::format_number(0.5));
+      BS_CHECK(json::json_number_text(0.5) == "0.5", "locale " << name << " changes the output: " << json::json_number_text(0.5));
       std::setlocale(LC_ALL, "C");
       break;
     }
@@ -138,77 +138,76 @@ void test_json()
                          "{1: 2}", "\"abc", "\"a\\qb\"", "\"a\tb\"", "\"\\u12\"", "\"\\ud800\"", "\"\\udc00\"", "[",
                          "{", "{\"a\":", "1 2", "[] []", "{\"a\":1,\"a\":2}", "/*c*/1"})
   {
-    const std::string e = parse_error_of([&] { json::parse(bad); });
+    const std::string e = parse_error_of([&] { json::parse_json(bad); });
     BS_CHECK(!e.empty(), "'" << bad << "' parses");
     BS_CHECK(contains(e, "line 1, column "), "no position in the error for '" << bad << "': " << e);
   }
-  BS_CHECK(contains(parse_error_of([] { json::parse("[NaN]"); }), "NaN and Infinity are not JSON"), "NaN message");
-  BS_CHECK(contains(parse_error_of([] { json::parse("{\"a\":1,\"a\":2}"); }), "duplicate member name \"a\""),
+  BS_CHECK(contains(parse_error_of([] { json::parse_json("[NaN]"); }), "NaN and Infinity are not JSON"), "NaN message");
+  BS_CHECK(contains(parse_error_of([] { json::parse_json("{\"a\":1,\"a\":2}"); }), "duplicate member name \"a\""),
            "duplicate key message");
-  BS_CHECK(contains(parse_error_of([] { json::parse("1e999"); }), "out of the range of a double"), "overflow message");
-  BS_CHECK(contains(parse_error_of([] { json::parse("[1 2]"); }), "expected ',' or ']'"), "array message");
+  BS_CHECK(contains(parse_error_of([] { json::parse_json("1e999"); }), "out of the range of a double"), "overflow message");
+  BS_CHECK(contains(parse_error_of([] { json::parse_json("[1 2]"); }), "expected ',' or ']'"), "array message");
   {
-    const std::string e = parse_error_of([] { json::parse("{\n  \"a\": [1,\n   x]}"); });
+    const std::string e = parse_error_of([] { json::parse_json("{\n  \"a\": [1,\n   x]}"); });
     BS_CHECK(contains(e, "line 3, column 4") && contains(e, "expected a JSON value"), "position: " << e);
   }
   {
-    const std::string e = parse_error_of([] { json::parse(""); });
+    const std::string e = parse_error_of([] { json::parse_json(""); });
     BS_CHECK(contains(e, "end of input"), "empty: " << e);
   }
   // Depth: 64 levels are fine, 65 are not; 10000 do not crash.
   {
     std::string ok = std::string(64, '[') + std::string(64, ']');
-    BS_CHECK(parse_error_of([&] { json::parse(ok); }).empty(), "64 levels are refused");
+    BS_CHECK(parse_error_of([&] { json::parse_json(ok); }).empty(), "64 levels are refused");
     std::string deep = std::string(65, '[') + std::string(65, ']');
-    BS_CHECK(contains(parse_error_of([&] { json::parse(deep); }), "nested deeper than 64"), "65 levels");
+    BS_CHECK(contains(parse_error_of([&] { json::parse_json(deep); }), "nested deeper than 64"), "65 levels");
     std::string very = std::string(10000, '[') + std::string(10000, ']');
-    BS_CHECK(contains(parse_error_of([&] { json::parse(very); }), "nested deeper than 64"), "10000 levels");
+    BS_CHECK(contains(parse_error_of([&] { json::parse_json(very); }), "nested deeper than 64"), "10000 levels");
     std::string objects;
     for(int i = 0; i < 10000; ++i)
       objects += "{\"a\":";
-    BS_CHECK(contains(parse_error_of([&] { json::parse(objects); }), "nested deeper than 64"), "10000 objects");
+    BS_CHECK(contains(parse_error_of([&] { json::parse_json(objects); }), "nested deeper than 64"), "10000 objects");
   }
   // Size limit.
   {
-    json::Parse_limits small;
+    json::Json_limits small;
     small.max_size = 10;
-    BS_CHECK(contains(parse_error_of([&] { json::parse("[1, 2, 3, 4, 5]", small); }), "larger than 10 bytes"),
+    BS_CHECK(contains(parse_error_of([&] { json::parse_json("[1, 2, 3, 4, 5]", small); }), "larger than 10 bytes"),
              "size limit");
   }
   // Strings: escapes, UTF-8, round trip through the writer.
   {
-    const json::Value v = json::parse("[\"a\\\"b\\\\c\\/d\\b\\f\\n\\r\\t\\u00e9\\ud83d\\ude00\\u0001\"]");
-    BS_CHECK(v.size() == 1 && v[0].as_string() == "a\"b\\c/d\b\f\n\r\t\xC3\xA9\xF0\x9F\x98\x80\x01",
+    const json::Json v = json::parse_json("[\"a\\\"b\\\\c\\/d\\b\\f\\n\\r\\t\\u00e9\\ud83d\\ude00\\u0001\"]");
+    BS_CHECK(v.size() == 1 && v[0].get<std::string>() == "a\"b\\c/d\b\f\n\r\t\xC3\xA9\xF0\x9F\x98\x80\x01",
              "string escapes");
     std::ostringstream s;
-    json::write(s, v);
-    const json::Value w = json::parse(s.str());
-    BS_CHECK(w[0].as_string() == v[0].as_string(), "string round trip: " << s.str());
+    json::write_json(s, v);
+    const json::Json w = json::parse_json(s.str());
+    BS_CHECK(w[0].get<std::string>() == v[0].get<std::string>(), "string round trip: " << s.str());
   }
   // The writer: structure, order of members, non-finite numbers refused.
   {
-    json::Value o = json::Value::object();
-    o.set("z", json::Value::number(-0.)).set("a", json::Value::array());
-    json::Value inner = json::Value::array();
-    inner.push_back(json::Value::boolean(true)).push_back(json::Value()).push_back(json::Value::number(0.1));
-    o.set("m", inner);
+    json::Json o = json::Json::object();
+    o["z"] = -0.;
+    o["a"] = json::Json::array();
+    o["m"] = json::Json::array({true, nullptr, 0.1});
     std::ostringstream s;
-    json::write(s, o);
+    json::write_json(s, o);
     BS_CHECK(s.str() == "{\"z\": -0, \"a\": [], \"m\": [true, null, 0.1]}\n", "writer output: " << s.str());
-    json::Value big = json::Value::object(), numbers = json::Value::array();
+    json::Json big = json::Json::object(), numbers = json::Json::array();
     for(int i = 0; i < 9; ++i)
-      numbers.push_back(json::Value::number(i));
-    big.set("n", numbers).set("s", json::Value::string("x"));
+      numbers.push_back(double(i));
+    big["n"] = numbers;
+    big["s"] = "x";
     std::ostringstream f;
-    json::write(f, big);
+    json::write_json(f, big);
     BS_CHECK(f.str() == "{\n  \"n\": [0, 1, 2, 3, 4, 5, 6, 7, 8],\n  \"s\": \"x\"\n}\n", "writer output: " << f.str());
-    json::Value n = json::Value::array();
-    n.push_back(json::Value::number(std::nan("")));
+    json::Json n = json::Json::array({std::nan("")});
     bool threw = false;
     try
     {
       std::ostringstream t;
-      json::write(t, n);
+      json::write_json(t, n);
     }
     catch(const std::invalid_argument&)
     {
@@ -216,7 +215,7 @@ void test_json()
     }
     BS_CHECK(threw, "NaN is written");
     // Byte order mark, surrounding white space.
-    BS_CHECK(json::parse("\xEF\xBB\xBF \r\n\t[1]\n ").size() == 1, "BOM and white space");
+    BS_CHECK(json::parse_json("\xEF\xBB\xBF \r\n\t[1]\n ").size() == 1, "BOM and white space");
   }
 }
 
@@ -753,11 +752,11 @@ struct Io_tests
                  "parameters as a short array");
     {
       // Parameters as an array in order are accepted too.
-      const json::Value doc = json::parse(text);
-      const json::Value& q = *(*doc.find("components"))[0].find("parameters");
+      const json::Json doc = json::parse_json(text);
+      const json::Json& q = doc.at("components")[0].at("parameters");
       std::string a = "[";
-      for(std::size_t i = 0; i < q.size(); ++i)
-        a += (i ? ", " : "") + json::format_number(q[i].as_number());
+      for(auto it = q.begin(); it != q.end(); ++it)
+        a += (it != q.begin() ? ", " : "") + json::json_number_text(it->get<double>());
       a += "]";
       try
       {

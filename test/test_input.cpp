@@ -162,7 +162,8 @@ void test_error_codes()
     {E::File_not_found, "file_not_found"},       {E::Unreadable_file, "unreadable_file"},
     {E::Unsupported_format, "unsupported_format"}, {E::Malformed_content, "malformed_content"},
     {E::No_points, "no_points"},                 {E::Too_few_points, "too_few_points"},
-    {E::Non_finite_point, "non_finite_point"},   {E::All_points_identical, "all_points_identical"}};
+    {E::Non_finite_point, "non_finite_point"},   {E::All_points_identical, "all_points_identical"},
+    {E::Scale_out_of_range, "scale_out_of_range"}};
   for(const auto& n : names)
   {
     BS_CHECK(std::strcmp(E::code_name(n.first), n.second) == 0, "code_name of " << n.second);

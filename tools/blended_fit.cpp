@@ -42,6 +42,7 @@ const char* usage =
   "                       mixture, see the manual)\n"
   "  --no-robust          the paper's plain least squares: every point pulls alike\n"
   "  --explicit           use the paper's explicit integrator instead of Gauss-Newton\n"
+  "  --threads N          threads of the fit (default 0: all cores); the result does not depend on it\n"
   "  --quiet              no progress on stderr\n"
   "  --help               this text\n"
   "Exit code 0 on success, 1 on a failure (unreadable input, ...), 2 on a command-line mistake.\n"
@@ -176,42 +177,51 @@ struct Silent : BS::Default_fitting_visitor {};
 
 int main(int argc, char** argv)
 {
-  return tools::run_tool("blended_fit", usage, argc, argv, [](tools::Arguments& args) {
+  const auto options = tools::known_options({"--json", "--mesh", "--hierarchy", "--model", "--max-iterations", "--seed",
+                                              "--threads", "--strays"},
+                                             {"--no-split", "--no-holes", "--quiet", "--robust", "--no-robust", "--explicit"});
+  return tools::run_tool("blended_fit", usage, argc, argv, options, [](const tools::Command_line& line) {
     std::string input, json, mesh, hierarchy, model_file, strays;
     bool no_split = false, no_holes = false, quiet = false, robust = true, explicit_integrator = false;
-    std::size_t iterations = 100;
+    std::size_t iterations = 100, threads = 0;
     unsigned int seed = 0;
-    while(!args.empty())
+    for(const tools::Option& o : line.options)
     {
-      const std::string a = args.next();
-      if(a == "--json") json = args.value_of(a);
-      else if(a == "--mesh") mesh = args.value_of(a);
-      else if(a == "--hierarchy") hierarchy = args.value_of(a);
-      else if(a == "--model") model_file = args.value_of(a);
+      const std::string& a = o.flag;
+      if(a == "--json") json = o.value;
+      else if(a == "--mesh") mesh = o.value;
+      else if(a == "--hierarchy") hierarchy = o.value;
+      else if(a == "--model") model_file = o.value;
       else if(a == "--no-split") no_split = true;
       else if(a == "--no-holes") no_holes = true;
       else if(a == "--quiet") quiet = true;
       else if(a == "--robust") robust = true;
       else if(a == "--no-robust") robust = false;
-      else if(a == "--strays") strays = args.value_of(a);
+      else if(a == "--strays") strays = o.value;
       else if(a == "--explicit") explicit_integrator = true;
       else if(a == "--max-iterations")
       {
-        iterations = std::size_t(tools::parse_integer(a, args.value_of(a)));
+        iterations = std::size_t(tools::parse_integer(a, o.value));
         if(iterations == 0 || iterations > 1000000)
           throw tools::Usage_error("--max-iterations must be in [1, 1000000]");
       }
+      else if(a == "--threads")
+      {
+        threads = std::size_t(tools::parse_integer(a, o.value));
+        if(threads > 4096)
+          throw tools::Usage_error("--threads must be in [0, 4096] (0: all cores)");
+      }
       else if(a == "--seed")
       {
-        const auto s = tools::parse_integer(a, args.value_of(a));
+        const auto s = tools::parse_integer(a, o.value);
         if(s > 0xffffffffu)
           throw tools::Usage_error("--seed must fit in 32 bits");
         seed = static_cast<unsigned int>(s);
       }
-      else if(tools::is_flag(a)) throw tools::Usage_error("unknown option " + a);
-      else if(input.empty()) input = a;
-      else throw tools::Usage_error("more than one input file ('" + input + "' and '" + a + "')");
     }
+    for(const std::string& a : line.operands)
+      if(input.empty()) input = a;
+      else throw tools::Usage_error("more than one input file ('" + input + "' and '" + a + "')");
     if(input.empty())
       throw tools::Usage_error("no input point cloud given");
     if(!mesh.empty() && tools::extension_of(mesh) != "ply" && tools::extension_of(mesh) != "off")
@@ -223,8 +233,9 @@ int main(int argc, char** argv)
       std::cerr << "blended_fit: read " << read.points_read << " points from '" << input << "'"
                 << (read.non_finite_dropped ? " (dropped " + std::to_string(read.non_finite_dropped) +
                                                 " with non-finite coordinates)" : std::string()) << "\n";
-    auto np = BS::parameters::robust_weighting(robust ? BS::Robust_weighting::Mixture : BS::Robust_weighting::None,
-                BS::parameters::integrator(explicit_integrator ? BS::Integrator::Explicit : BS::Integrator::Gauss_newton))
+    auto np = BS::parameters::number_of_threads(threads,
+                BS::parameters::robust_weighting(robust ? BS::Robust_weighting::Mixture : BS::Robust_weighting::None,
+                BS::parameters::integrator(explicit_integrator ? BS::Integrator::Explicit : BS::Integrator::Gauss_newton)))
                 .number_of_iterations(iterations)
                 .random_seed(seed);
     const Result result = quiet ? BS::fit_superquadric(points, np.visitor(Silent()))

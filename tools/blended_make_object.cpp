@@ -158,24 +158,20 @@ BS::CAD_mesh build(const std::string& name, const std::vector<std::pair<std::str
   return BS::make_box_hole_cylinder(p);
 }
 
-void make_object(cl::Arguments& args)
+void make_object(const cl::Command_line& line)
 {
   std::string name, output;
   std::vector<std::pair<std::string, std::string>> flags;
-  std::set<std::string> all_flags = {"--segments"};
-  for(const auto& o : object_flags())
-    all_flags.insert(o.second.begin(), o.second.end());
-
-  while(!args.empty())
+  for(const cl::Option& o : line.options)
   {
-    const std::string a = args.next();
-    if(a == "-o")
-      output = args.value_of(a);
-    else if(all_flags.count(a))
-      flags.emplace_back(a, args.value_of(a));
-    else if(cl::is_flag(a))
-      throw cl::Usage_error("unknown option '" + a + "'");
-    else if(name.empty())
+    if(o.flag == "-o")
+      output = o.value;
+    else
+      flags.emplace_back(o.flag, o.value);
+  }
+  for(const std::string& a : line.operands)
+  {
+    if(name.empty())
       name = a;
     else
       throw cl::Usage_error("more than one object name ('" + name + "' and '" + a + "')");
@@ -217,5 +213,9 @@ void make_object(cl::Arguments& args)
 
 int main(int argc, char** argv)
 {
-  return blended_shape_tools::run_tool(tool, usage(), argc, argv, make_object);
+  std::set<std::string> all_flags = {"-o", "--segments"};
+  for(const auto& o : object_flags())
+    all_flags.insert(o.second.begin(), o.second.end());
+  const auto options = cl::known_options(std::vector<std::string>(all_flags.begin(), all_flags.end()));
+  return blended_shape_tools::run_tool(tool, usage(), argc, argv, options, make_object);
 }

@@ -51,7 +51,7 @@ const std::string usage =
 
 Kernel::Point_3 to_point(const std::array<double, 3>& a) { return Kernel::Point_3(a[0], a[1], a[2]); }
 
-void scan(cl::Arguments& args)
+void scan(const cl::Command_line& line)
 {
   std::string input, output;
   bool has_eye = false, has_target = false, has_up = false, has_fov = false, has_ortho = false;
@@ -61,36 +61,37 @@ void scan(cl::Arguments& args)
   std::uint64_t width = 0, height = 0;
   BS::Scan_options options;
 
-  while(!args.empty())
+  for(const cl::Option& o : line.options)
   {
-    const std::string a = args.next();
+    const std::string& a = o.flag;
     if(a == "-o")
-      output = args.value_of(a);
+      output = o.value;
     else if(a == "--eye")
-      eye = cl::parse_triple(a, args.value_of(a)), has_eye = true;
+      eye = cl::parse_triple(a, o.value), has_eye = true;
     else if(a == "--target")
-      target = cl::parse_triple(a, args.value_of(a)), has_target = true;
+      target = cl::parse_triple(a, o.value), has_target = true;
     else if(a == "--up")
-      up = cl::parse_triple(a, args.value_of(a)), has_up = true;
+      up = cl::parse_triple(a, o.value), has_up = true;
     else if(a == "--fov")
-      fov = cl::parse_number(a, args.value_of(a)), has_fov = true;
+      fov = cl::parse_number(a, o.value), has_fov = true;
     else if(a == "--width")
-      width = cl::parse_integer(a, args.value_of(a)), has_width = true;
+      width = cl::parse_integer(a, o.value), has_width = true;
     else if(a == "--height")
-      height = cl::parse_integer(a, args.value_of(a)), has_height = true;
+      height = cl::parse_integer(a, o.value), has_height = true;
     else if(a == "--orthographic")
-      view_height = cl::parse_number(a, args.value_of(a)), has_ortho = true;
+      view_height = cl::parse_number(a, o.value), has_ortho = true;
     else if(a == "--noise")
-      options.noise_sigma = cl::parse_number(a, args.value_of(a));
+      options.noise_sigma = cl::parse_number(a, o.value);
     else if(a == "--dropout")
-      options.dropout_probability = cl::parse_number(a, args.value_of(a));
+      options.dropout_probability = cl::parse_number(a, o.value);
     else if(a == "--seed")
-      options.random_seed = cl::parse_integer(a, args.value_of(a));
+      options.random_seed = cl::parse_integer(a, o.value);
     else if(a == "--normals")
       normals = true;
-    else if(cl::is_flag(a))
-      throw cl::Usage_error("unknown option '" + a + "'");
-    else if(input.empty())
+  }
+  for(const std::string& a : line.operands)
+  {
+    if(input.empty())
       input = a;
     else
       throw cl::Usage_error("more than one input mesh ('" + input + "' and '" + a + "')");
@@ -139,5 +140,8 @@ void scan(cl::Arguments& args)
 
 int main(int argc, char** argv)
 {
-  return blended_shape_tools::run_tool(tool, usage, argc, argv, scan);
+  const auto options = cl::known_options({"-o", "--eye", "--target", "--up", "--fov", "--width", "--height",
+                                          "--orthographic", "--noise", "--dropout", "--seed"},
+                                         {"--normals"});
+  return blended_shape_tools::run_tool(tool, usage, argc, argv, options, scan);
 }

@@ -1,10 +1,15 @@
 // SPDX-License-Identifier: LGPL-3.0-or-later
 // The command-line conventions shared by the blended_* tools: `--help` prints
 // the usage and exits 0; a command-line mistake prints "TOOL: what" and exits
-// 2; any other failure prints "TOOL: what" and exits 1. Values are parsed
-// strictly: "12x", "nan" or "1,2" where three numbers are expected are errors.
+// 2; any other failure prints "TOOL: what" and exits 1. Boost.Program_options
+// splits the command line (unknown options, missing values); the values are
+// parsed here, strictly: "12x", "nan" or "1,2" where three numbers are
+// expected are errors (Program_options' own conversions accept "nan" and
+// "inf" as doubles and wrap "-3" round to a large unsigned number).
 #ifndef BLENDED_SHAPE_TOOLS_INTERNAL_COMMAND_LINE_H
 #define BLENDED_SHAPE_TOOLS_INTERNAL_COMMAND_LINE_H
+
+#include <boost/program_options.hpp>
 
 #include <algorithm>
 #include <array>
@@ -29,36 +34,74 @@ struct Usage_error : std::runtime_error
   using std::runtime_error::runtime_error;
 };
 
-/// The arguments after the program name, consumed left to right.
-class Arguments
+/// An option as given: its flag ("--seed", "-o") and its value ("" for a switch).
+struct Option
 {
-public:
-  Arguments(int argc, char** argv) : m_args(argv + (argc > 0 ? 1 : 0), argv + (argc > 0 ? argc : 0)) {}
-
-  bool empty() const { return m_position >= m_args.size(); }
-  const std::string& next() { return m_args[m_position++]; }
-
-  /// The value following `flag`; a missing value (or another flag) is a usage error.
-  std::string value_of(const std::string& flag)
-  {
-    if(empty() || m_args[m_position].rfind("--", 0) == 0)
-      throw Usage_error("missing value after " + flag);
-    return next();
-  }
-
-  bool wants_help() const
-  {
-    return std::any_of(m_args.begin(), m_args.end(),
-                       [](const std::string& a) { return a == "--help" || a == "-h"; });
-  }
-
-private:
-  std::vector<std::string> m_args;
-  std::size_t m_position = 0;
+  std::string flag, value;
 };
 
-/// A flag is anything starting with '-' except a lone "-".
-inline bool is_flag(const std::string& a) { return a.size() > 1 && a[0] == '-'; }
+/// The command line: the options in their order (a repeated one counts
+/// where it stands, so the last wins), then the other arguments.
+struct Command_line
+{
+  std::vector<Option> options;
+  std::vector<std::string> operands;
+};
+
+/// The options a tool knows: the flags that take a value, and the switches.
+/// Flags are written as typed: "--seed", or "-o" for a one-letter one.
+inline boost::program_options::options_description
+known_options(const std::vector<std::string>& with_value, const std::vector<std::string>& switches = {})
+{
+  namespace po = boost::program_options;
+  po::options_description d;
+  const auto name = [](const std::string& flag) { return flag.size() == 2 ? "," + flag.substr(1) : flag.substr(2); };
+  for(const std::string& f : with_value)
+    d.add_options()(name(f).c_str(), po::value<std::string>(), "");
+  for(const std::string& f : switches)
+    d.add_options()(name(f).c_str(), "");
+  return d;
+}
+
+/// Splits the arguments after the program name by `options`; an unknown
+/// option or a missing value is a Usage_error with Program_options' message.
+inline Command_line parse_command_line(int argc, char** argv, const boost::program_options::options_description& options)
+{
+  namespace po = boost::program_options;
+  namespace style = po::command_line_style;
+  po::options_description all(options);
+  all.add_options()("operand", po::value<std::vector<std::string>>(), "");
+  po::positional_options_description operands;
+  operands.add("operand", -1);
+  Command_line line;
+  try
+  {
+    // Whole names only: no "--max" for "--max-iterations".
+    const po::parsed_options parsed = po::command_line_parser(argc, argv)
+                                        .options(all)
+                                        .positional(operands)
+                                        .style(style::default_style & ~style::allow_guessing)
+                                        .run();
+    for(const po::option& o : parsed.options)
+    {
+      if(o.string_key == "operand")
+        line.operands.insert(line.operands.end(), o.value.begin(), o.value.end());
+      else
+        line.options.push_back({o.string_key[0] == '-' ? o.string_key : "--" + o.string_key,
+                                o.value.empty() ? std::string() : o.value.front()});
+    }
+  }
+  catch(const po::error& e)
+  {
+    // Program_options calls the one-letter option -o "--o" in some messages.
+    std::string m = e.what();
+    for(std::size_t p = m.find("'--"); p != std::string::npos; p = m.find("'--", p + 1))
+      if(p + 4 < m.size() && m[p + 4] == '\'')
+        m.erase(p + 1, 1);
+    throw Usage_error(m);
+  }
+  return line;
+}
 
 /// A finite number, the whole text.
 inline double parse_number(const std::string& flag, const std::string& text)
@@ -127,19 +170,21 @@ inline std::string extension_of(const std::string& filename)
   return ext;
 }
 
-/// Runs `body(arguments)` with the conventions above; returns the exit code.
+/// Runs `body(command_line)` with the conventions above, the command line
+/// split by `options` (see known_options()); returns the exit code.
 template <class Body>
-int run_tool(const char* tool, const std::string& usage, int argc, char** argv, Body&& body)
+int run_tool(const char* tool, const std::string& usage, int argc, char** argv,
+             const boost::program_options::options_description& options, Body&& body)
 {
-  Arguments arguments(argc, argv);
-  if(arguments.wants_help())
-  {
-    std::cout << usage;
-    return 0;
-  }
+  for(int i = 1; i < argc; ++i)
+    if(std::string(argv[i]) == "--help" || std::string(argv[i]) == "-h")
+    {
+      std::cout << usage;
+      return 0;
+    }
   try
   {
-    body(arguments);
+    body(parse_command_line(argc, argv, options));
     return 0;
   }
   catch(const Usage_error& e)

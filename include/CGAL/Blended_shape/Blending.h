@@ -5,7 +5,9 @@
 
 #include <CGAL/Blended_shape/Blending/Blending_function.h>
 #include <CGAL/Blended_shape/Blending/Blending_region.h>
+#include <CGAL/Blended_shape/Blending/Ellipse_blending_region.h>
 #include <CGAL/Blended_shape/Blending/Blend.h>
+#include <CGAL/Blended_shape/Blending/Shape_point.h>
 #include <CGAL/Blended_shape/Blending/Blended_shape.h>
 #include <CGAL/Blended_shape/Blending/Blended_shape_mesh.h>
 #include <CGAL/Blended_shape/Blending/Quotient_domain.h>

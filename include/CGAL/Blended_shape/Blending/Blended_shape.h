@@ -3,6 +3,11 @@
 #define CGAL_BLENDED_SHAPE_BLENDING_BLENDED_SHAPE_H
 
 #include <CGAL/Blended_shape/Blending/Blend.h>
+#include <CGAL/Blended_shape/Blending/Shape_point.h>
+#include <CGAL/Blended_shape/Blending/internal/Parameter_layout.h>
+#include <CGAL/Blended_shape/Blending/internal/blend_correspondence.h>
+#include <CGAL/Blended_shape/Blending/internal/blend_region_checks.h>
+#include <CGAL/Blended_shape/Blending/internal/hole_placement.h>
 #include <CGAL/Blended_shape/Primitives/Component_shape.h>
 #include <CGAL/Blended_shape/Primitives/Hole_component.h>
 #include <CGAL/Blended_shape/Primitives/Superquadric_ellipsoid.h>
@@ -26,20 +31,6 @@
 
 namespace CGAL {
 namespace Blended_shapes {
-
-/// \ingroup PkgBlendedShapeBlending
-/// A point of the domain of a blended shape: a chart point of one component.
-/// Several such points may be the same point of the quotient domain (eq. 2);
-/// `Blended_shape::canonical_point()` chooses one.
-struct Shape_point
-{
-  std::size_t component = 0; ///< the component
-  Chart_point u;             ///< the chart point of that component
-
-  Shape_point() = default;
-  /// Chart point `p` of component `c`.
-  Shape_point(std::size_t c, const Chart_point& p) : component(c), u(p) {}
-};
 
 /// \ingroup PkgBlendedShapeBlending
 /// A block of consecutive columns of a model Jacobian: a point depends only
@@ -107,7 +98,7 @@ public:
   typedef std::vector<Jacobian_block> Sparse_jacobian;  ///< a sparse model Jacobian at one point
 
   /// Number of placement parameters of a non-root component.
-  static constexpr std::size_t number_of_placement_parameters = 7;
+  static constexpr std::size_t number_of_placement_parameters = internal::Parameter_layout::number_of_placement_parameters;
   /// Number of parameters of a blend (eq. 29).
   static constexpr std::size_t number_of_blend_parameters = Ellipse_blending_region::number_of_parameters;
 
@@ -232,22 +223,22 @@ public:
   /// @{
 
   /// The dimension of the parameter vector.
-  std::size_t number_of_parameters() const { return m_size; }
+  std::size_t number_of_parameters() const { return m_layout.size(); }
   /// The index of component `c`'s first parameter (its placement, or for the root its shape).
-  std::size_t component_offset(std::size_t c) const { return m_component_offset.at(c); }
+  std::size_t component_offset(std::size_t c) const { return m_layout.component_offset(c); }
   /// The index of component `c`'s first shape parameter.
-  std::size_t shape_offset(std::size_t c) const { return m_component_offset.at(c) + (c == 0 ? 0 : number_of_placement_parameters); }
+  std::size_t shape_offset(std::size_t c) const { return m_layout.shape_offset(c); }
   /// The index of blend `b`'s first parameter (`e_u`).
-  std::size_t blend_offset(std::size_t b) const { return m_blend_offset.at(b); }
+  std::size_t blend_offset(std::size_t b) const { return m_layout.blend_offset(b); }
 
   /// The parameter vector.
   Eigen::VectorXd parameters() const
   {
-    Eigen::VectorXd q = Eigen::VectorXd::Zero(Eigen::Index(m_size));
+    Eigen::VectorXd q = Eigen::VectorXd::Zero(Eigen::Index(number_of_parameters()));
     for(std::size_t c = 0; c < m_components.size(); ++c)
     {
       const Component& k = m_components[c];
-      Eigen::Index o = Eigen::Index(m_component_offset[c]);
+      Eigen::Index o = Eigen::Index(component_offset(c));
       if(c != 0)
       {
         q.segment<3>(o) = k.m_t;
@@ -258,7 +249,7 @@ public:
       q.segment(o, s.size()) = s;
     }
     for(std::size_t b = 0; b < m_blends.size(); ++b)
-      q.segment<7>(Eigen::Index(m_blend_offset[b])) = m_blends[b].base_region().parameters();
+      q.segment<7>(Eigen::Index(blend_offset(b))) = m_blends[b].base_region().parameters();
     return q;
   }
 
@@ -268,18 +259,19 @@ public:
   ///         blends are added); the shape is then unchanged.
   void set_parameters(const Eigen::VectorXd& q)
   {
-    if(q.size() != Eigen::Index(m_size))
-      throw std::invalid_argument("Blended_shape::set_parameters: expected " + std::to_string(m_size) +
+    const std::size_t size = number_of_parameters();
+    if(q.size() != Eigen::Index(size))
+      throw std::invalid_argument("Blended_shape::set_parameters: expected " + std::to_string(size) +
                                   " parameters, got " + std::to_string(q.size()));
     const Eigen::VectorXd old = parameters();
-    for(std::size_t i = 0; i < m_size; ++i)
+    for(std::size_t i = 0; i < size; ++i)
       if(is_fixed_parameter(i) && q[Eigen::Index(i)] != old[Eigen::Index(i)])
         throw std::invalid_argument("Blended_shape::set_parameters: parameter " + parameter_name(i) +
                                     " is fixed (see is_fixed_parameter())");
     Blended_shape copy(*this);
     copy.assign_parameters(q);
-    if(m_blends.size() > 0 && q.tail(Eigen::Index(m_size - m_blend_offset.front())) !=
-                                old.tail(Eigen::Index(m_size - m_blend_offset.front())))
+    const Eigen::Index blend_parameters = Eigen::Index(size - m_layout.first_blend_parameter());
+    if(m_blends.size() > 0 && q.tail(blend_parameters) != old.tail(blend_parameters))
       copy.validate_regions();
     *this = std::move(copy);
   }
@@ -287,7 +279,7 @@ public:
   /// The name of parameter `i` ("c1.a1", "c1.tx", "b0.e_u", ...).
   std::string parameter_name(std::size_t i) const
   {
-    const Parameter_address a = address(i);
+    const internal::Parameter_layout::Address a = m_layout.address(i);
     static const char* placement[] = {"tx", "ty", "tz", "qw", "qx", "qy", "qz"};
     if(a.is_blend)
       return "b" + std::to_string(a.index) + "." + Ellipse_blending_region::parameter_name(int(a.local));
@@ -302,7 +294,7 @@ public:
   /// and a component's shape parameters are of their primitive's kinds.
   Parameter_kind parameter_kind(std::size_t i) const
   {
-    const Parameter_address a = address(i);
+    const internal::Parameter_layout::Address a = m_layout.address(i);
     if(a.is_blend)
       return Parameter_kind::Dimensionless;
     if(a.is_placement)
@@ -311,7 +303,7 @@ public:
   }
 
   /// Whether parameter `i` belongs to the rigid placement of a component relative to its parent (sec. 3.5).
-  bool is_placement_parameter(std::size_t i) const { return address(i).is_placement; }
+  bool is_placement_parameter(std::size_t i) const { return m_layout.address(i).is_placement; }
 
   /// Lower bound of parameter `i`.
   double parameter_lower_bound(std::size_t i) const { return bounds(i).first; }
@@ -324,7 +316,7 @@ public:
   /// Their Jacobian columns are zero.
   bool is_fixed_parameter(std::size_t i) const
   {
-    if(i >= m_size)
+    if(i >= number_of_parameters())
       throw std::out_of_range("Blended_shape: parameter index " + std::to_string(i) + " out of range");
     return m_fixed[i];
   }
@@ -332,7 +324,7 @@ public:
 private:
   bool compute_fixed(std::size_t i) const
   {
-    const Parameter_address a = address(i);
+    const internal::Parameter_layout::Address a = m_layout.address(i);
     if(a.is_blend)
       return a.local == Ellipse_blending_region::H && !m_blends[a.index].is_gradual();
     if(a.is_placement)
@@ -491,7 +483,7 @@ public:
   {
     Sparse_jacobian J;
     point_and_jacobian(p, J);
-    Eigen::MatrixXd D = Eigen::MatrixXd::Zero(3, Eigen::Index(m_size));
+    Eigen::MatrixXd D = Eigen::MatrixXd::Zero(3, Eigen::Index(number_of_parameters()));
     for(const Jacobian_block& b : J)
       D.block(0, Eigen::Index(b.first_column), 3, b.columns.cols()) += b.columns;
     return D;
@@ -624,56 +616,14 @@ public:
     const Shape_point places[2] = {first, second};
     std::array<Ellipse_blending_region, 2> regions = {make_disk_region(places[0], radius, half_width, "first"),
                                                       make_disk_region(places[1], radius, half_width, "second")};
-    // The region curves on the surface: centres and mean radii.
-    Eigen::Vector3d centre[2], start[2];
-    double mean_radius = 0.;
-    const int samples = 64;
-    for(int e = 0; e < 2; ++e)
-    {
-      std::vector<Eigen::Vector3d> pts;
-      for(int k = 0; k < samples; ++k)
-      {
-        const Eigen::Vector2d v = regions[std::size_t(e)].strip_point(0., 2. * M_PI * k / samples);
-        const Shape_point sp(places[e].component, Chart_point(regions[std::size_t(e)].chart(), v.x(), v.y()));
-        pts.push_back(internal::to_eigen(point(sp)));
-      }
-      centre[e].setZero();
-      for(const Eigen::Vector3d& x : pts)
-        centre[e] += x / double(samples);
-      for(const Eigen::Vector3d& x : pts)
-        mean_radius += (x - centre[e]).norm() / (2. * samples);
-      start[e] = pts.front();
-    }
-    const Eigen::Vector3d axis = centre[1] - centre[0];
-    const double length = axis.norm();
-    if(!(length > 1e-9 * (mean_radius + 1.)) || !(mean_radius > 0.))
-      throw std::invalid_argument("Blended_shape::add_hole: the two places are too close to hold a hole");
-    // Frame: z from the first curve to the second, x toward the first curve's theta = 0 point.
-    const Eigen::Vector3d z = axis / length;
-    Eigen::Vector3d x = start[0] - centre[0];
-    x -= x.dot(z) * z;
-    if(!(x.norm() > 1e-12 * mean_radius))
-      x = z.unitOrthogonal();
-    x.normalize();
-    Eigen::Matrix3d R;
-    R.col(0) = x;
-    R.col(1) = z.cross(x);
-    R.col(2) = z;
-    const Eigen::Vector3d mid = 0.5 * (centre[0] + centre[1]);
-    // End 0 sits at local z = -a3, end 1 at z = +a3; the toroid's angle v
-    // is -(theta + phase) at end 0 and theta + phase at end 1.
-    double phase[2];
-    for(int e = 0; e < 2; ++e)
-    {
-      const Eigen::Vector3d local = R.transpose() * (start[e] - mid);
-      const double psi = std::atan2(local.y(), local.x());
-      phase[e] = (e == 0) ? -psi : psi;
-    }
-    Hole hole(mean_radius, mean_radius, 0.5 * length, 1., 1., 1., 1., Hole_domain::Two_disks);
-    // (mid, R) in the root's frame, placed relative to the parent: the first place's component
+    // The region curves on the surface, and the hole through them.
+    const internal::Hole_placement h = internal::place_hole({region_curve(places[0], regions[0]),
+                                                             region_curve(places[1], regions[1])});
+    Hole hole(h.mean_radius, h.mean_radius, h.half_length, 1., 1., 1., 1., Hole_domain::Two_disks);
+    // (centre, rotation) in the root's frame, placed relative to the parent: the first place's component
     const std::size_t p = places[0].component;
-    const Eigen::Vector3d t_local = m_root_R[p].transpose() * (mid - m_root_t[p]);
-    const Eigen::Matrix3d R_local = m_root_R[p].transpose() * R;
+    const Eigen::Vector3d t_local = m_root_R[p].transpose() * (h.centre - m_root_t[p]);
+    const Eigen::Matrix3d R_local = m_root_R[p].transpose() * h.rotation;
 
     Blended_shape copy(*this);
     copy.m_components.push_back(
@@ -684,7 +634,7 @@ public:
     for(int e = 0; e < 2; ++e)
     {
       copy.m_blends.push_back(Blend(Blend_kind::Hole, places[e].component, regions[std::size_t(e)], hc,
-                                    Added_side::hole_end(e, end_half_width, phase[e]), hole_index));
+                                    Added_side::hole_end(e, end_half_width, h.phase[std::size_t(e)]), hole_index));
       rec.blends[std::size_t(e)] = copy.m_blends.size() - 1;
       copy.validate_new_blend(copy.m_blends.size() - 1);
     }
@@ -828,7 +778,7 @@ public:
     return m_blends.size() - 1;
   }
   // The regions of blend b against those of the blends before it (see validate_blend()).
-  void check_blend_regions(std::size_t b) const { validate_blend(b, b); }
+  void check_blend_regions(std::size_t b) const { internal::validate_blend(*this, b, b); }
   void append_hole(const Hole_record& r)
   {
     if(r.component >= m_components.size() || !m_components[r.component].shape().template primitive<Hole>() ||
@@ -839,43 +789,9 @@ public:
   /// \endcond
 
 private:
-  struct Parameter_address
-  {
-    bool is_blend = false, is_placement = false;
-    std::size_t index = 0, local = 0;
-  };
-
-  Parameter_address address(std::size_t i) const
-  {
-    if(i >= m_size)
-      throw std::out_of_range("Blended_shape: parameter index " + std::to_string(i) + " out of range");
-    // Binary searches over the (increasing) offsets: O(log n) per parameter,
-    // so that update_layout() stays O(n log n) for large models.
-    Parameter_address a;
-    if(!m_blend_offset.empty() && i >= m_blend_offset.front())
-    {
-      const auto it = std::upper_bound(m_blend_offset.begin(), m_blend_offset.end(), i) - 1;
-      a.is_blend = true;
-      a.index = std::size_t(it - m_blend_offset.begin());
-      a.local = i - *it;
-      return a;
-    }
-    const auto it = std::upper_bound(m_component_offset.begin(), m_component_offset.end(), i) - 1;
-    a.index = std::size_t(it - m_component_offset.begin());
-    a.local = i - *it;
-    if(a.index != 0)
-    {
-      if(a.local < number_of_placement_parameters)
-        a.is_placement = true;
-      else
-        a.local -= number_of_placement_parameters;
-    }
-    return a;
-  }
-
   std::pair<double, double> bounds(std::size_t i) const
   {
-    const Parameter_address a = address(i);
+    const internal::Parameter_layout::Address a = m_layout.address(i);
     if(a.is_blend)
       return {Ellipse_blending_region::parameter_lower_bound(int(a.local)),
               Ellipse_blending_region::parameter_upper_bound(int(a.local))};
@@ -890,7 +806,7 @@ private:
     for(std::size_t c = 0; c < m_components.size(); ++c)
     {
       Component& k = m_components[c];
-      Eigen::Index o = Eigen::Index(m_component_offset[c]);
+      Eigen::Index o = Eigen::Index(component_offset(c));
       if(c != 0)
       {
         if(!q.segment<3>(o).allFinite())
@@ -903,28 +819,18 @@ private:
       k.mutable_shape().set_parameters(q.segment(o, Eigen::Index(k.shape().number_of_parameters())));
     }
     for(std::size_t b = 0; b < m_blends.size(); ++b)
-      m_blends[b].base_region().set_parameters(q.segment<7>(Eigen::Index(m_blend_offset[b])));
+      m_blends[b].base_region().set_parameters(q.segment<7>(Eigen::Index(blend_offset(b))));
     update_root_placements();
   }
 
   void update_layout()
   {
-    m_component_offset.resize(m_components.size());
-    std::size_t o = 0;
+    std::vector<std::size_t> shape_sizes(m_components.size());
     for(std::size_t c = 0; c < m_components.size(); ++c)
-    {
-      m_component_offset[c] = o;
-      o += (c == 0 ? 0 : number_of_placement_parameters) + m_components[c].shape().number_of_parameters();
-    }
-    m_blend_offset.resize(m_blends.size());
-    for(std::size_t b = 0; b < m_blends.size(); ++b)
-    {
-      m_blend_offset[b] = o;
-      o += number_of_blend_parameters;
-    }
-    m_size = o;
-    m_fixed.assign(m_size, false);
-    for(std::size_t i = 0; i < m_size; ++i)
+      shape_sizes[c] = m_components[c].shape().number_of_parameters();
+    m_layout.reset(shape_sizes, m_blends.size(), number_of_blend_parameters);
+    m_fixed.assign(number_of_parameters(), false);
+    for(std::size_t i = 0; i < number_of_parameters(); ++i)
       m_fixed[i] = compute_fixed(i);
     m_parent.assign(m_components.size(), no_parent);
     for(const Blend& B : m_blends)
@@ -950,11 +856,7 @@ private:
     }
   }
 
-  bool is_tube(std::size_t c) const
-  {
-    const Hole* h = m_components[c].shape().template primitive<Hole>();
-    return h && h->domain() == Hole_domain::Tube;
-  }
+  bool is_tube(std::size_t c) const { return internal::is_tube_component(*this, c); }
 
   void check_component(std::size_t c, const char* what) const
   {
@@ -988,6 +890,20 @@ private:
                                   " (see Component_shape::chart_domain())");
   }
 
+  // The curve of `region` (d = 0) on the surface of the place's component, sampled at 64 uniform theta.
+  std::vector<Eigen::Vector3d> region_curve(const Shape_point& place, const Ellipse_blending_region& region) const
+  {
+    const int samples = 64;
+    std::vector<Eigen::Vector3d> pts;
+    for(int k = 0; k < samples; ++k)
+    {
+      const Eigen::Vector2d v = region.strip_point(0., 2. * M_PI * k / samples);
+      const Shape_point sp(place.component, Chart_point(region.chart(), v.x(), v.y()));
+      pts.push_back(internal::to_eigen(point(sp)));
+    }
+    return pts;
+  }
+
   Ellipse_blending_region make_disk_region(const Shape_point& place, double radius, double half_width,
                                            const char* which) const
   {
@@ -1019,57 +935,6 @@ private:
     B.base_region() = r;
   }
 
-  // Sample points of the strips and disks of blend b on both components, as
-  // shape points; used to check that regions do not meet.
-  std::vector<Shape_point> region_samples(std::size_t b, bool base_side) const
-  {
-    const Blend& B = m_blends[b];
-    std::vector<Shape_point> s;
-    const int n = 48;
-    for(int k = 0; k < n; ++k)
-    {
-      const double th = 2. * M_PI * k / n;
-      for(double d : {-1., 0., 1.})
-      {
-        if(base_side)
-        {
-          const Eigen::Vector2d v = B.base_region().strip_point(d, th);
-          s.push_back(Shape_point(B.base_component(), Chart_point(B.base_region().chart(), v.x(), v.y())));
-        }
-        else
-          s.push_back(Shape_point(B.added_component(), B.added_side().strip_point(d, th, is_tube(B.added_component()))));
-      }
-    }
-    return s;
-  }
-
-  // Where blend b reaches or cuts away (for overlap checks): its strips, its
-  // base disk or discarded part, and the part of an added component outside
-  // its ellipse region (a region there would be on no surface).
-  bool reaches(std::size_t b, const Shape_point& p) const
-  {
-    const Blend& B = m_blends[b];
-    const Component_shape& s = m_components[p.component].shape();
-    Chart_point v;
-    if(p.component == B.base_component() && s.to_chart(p.u, B.base_region().chart(), v))
-    {
-      const Region_side side = B.base_region().locate(Eigen::Vector2d(v.x, v.y)).side;
-      if(side != Region_side::Retained)
-        return true;
-    }
-    if(p.component == B.added_component())
-    {
-      const bool tube = is_tube(p.component);
-      const bool ellipse = B.added_side().kind() == Added_side::Ellipse;
-      if(!s.to_chart(p.u, B.added_side().chart(tube), v))
-        return ellipse;
-      const Region_side side = B.added_side().locate(v, tube, B.core_stretch()).side;
-      if(side == Region_side::Strip || (ellipse && side == Region_side::Discarded))
-        return true;
-    }
-    return false;
-  }
-
   // See point(): the added component at beta extended, for a discarded
   // base point within two strip widths past the discarded edge of a
   // cut-and-glue blend's strip.
@@ -1096,65 +961,14 @@ private:
     return std::nullopt;
   }
 
-  bool share_a_component(std::size_t b, std::size_t o) const
-  {
-    const Blend &B = m_blends[b], &O = m_blends[o];
-    return B.base_component() == O.base_component() || B.base_component() == O.added_component() ||
-           B.added_component() == O.base_component() || B.added_component() == O.added_component();
-  }
-
-  // The regions of every blend: inside their charts and disjoint (see validate_blend()).
+  // The regions of every blend: inside their charts and disjoint (see internal::validate_blend()).
   void validate_regions() const
   {
     for(std::size_t b = 0; b < m_blends.size(); ++b)
-      validate_blend(b, b);
+      internal::validate_blend(*this, b, b);
   }
 
-  void validate_new_blend(std::size_t b) const { validate_blend(b, m_blends.size()); }
-
-  // Blend b's regions (with their strips) are inside their charts, and meet
-  // no region of the blends before `others` (but b) that share a component with it.
-  void validate_blend(std::size_t b, std::size_t others) const
-  {
-    const Blend& B = m_blends[b];
-    // The base region must stay inside its chart, with its strip.
-    const Component_shape& base = m_components[B.base_component()].shape();
-    if(B.base_region().chart() >= base.number_of_charts())
-      throw std::invalid_argument("Blended_shape: the region's chart " + std::to_string(B.base_region().chart()) +
-                                  " is not a chart of component " + std::to_string(B.base_component()));
-    const Chart_domain dom = base.chart_domain(B.base_region().chart());
-    for(const Shape_point& p : region_samples(b, true))
-      if(!dom.contains(p.u.x, p.u.y))
-        throw std::invalid_argument("Blended_shape: the blending region of blend " + std::to_string(b) +
-                                    " (with its strip) leaves chart " + std::to_string(p.u.chart) + " of component " +
-                                    std::to_string(p.component) + "; make it smaller or move it inside the chart");
-    if(B.added_side().kind() == Added_side::Ellipse)
-    {
-      const Component_shape& added = m_components[B.added_component()].shape();
-      const Chart_domain ad = added.chart_domain(B.added_side().chart(false));
-      for(const Shape_point& p : region_samples(b, false))
-        if(!ad.contains(p.u.x, p.u.y))
-          throw std::invalid_argument("Blended_shape: the added component's region of blend " + std::to_string(b) +
-                                      " leaves its chart");
-    }
-    for(std::size_t o = 0; o < others; ++o)
-    {
-      if(o == b || !share_a_component(b, o))
-        continue;
-      bool meet = false;
-      for(bool side : {true, false})
-      {
-        for(const Shape_point& p : region_samples(b, side))
-          meet = meet || reaches(o, p);
-        for(const Shape_point& p : region_samples(o, side))
-          meet = meet || reaches(b, p);
-      }
-      if(meet)
-        throw std::invalid_argument("Blended_shape: the region of blend " + std::to_string(b) + " meets the region of blend " +
-                                    std::to_string(o) + " or lies where it cuts the surface away; regions of "
-                                    "different blends must be disjoint and on the surface");
-    }
-  }
+  void validate_new_blend(std::size_t b) const { internal::validate_blend(*this, b, m_blends.size()); }
 
   static Point_3 to_point(const Eigen::Vector3d& x) { return Point_3(x.x(), x.y(), x.z()); }
 
@@ -1183,7 +997,7 @@ private:
         const std::size_t pa = (m_parent[a] == no_parent) ? 0 : m_parent[a];
         const Eigen::Matrix3d& Qp = m_root_R[pa];
         Jacobian_block blk;
-        blk.first_column = m_component_offset[a];
+        blk.first_column = component_offset(a);
         blk.columns.resize(3, Eigen::Index(number_of_placement_parameters));
         blk.columns.template leftCols<3>() = factor * Qp;
         for(int m = 0; m < 4; ++m)
@@ -1213,112 +1027,38 @@ private:
       const Blend& B = m_blends[b];
       if(B.base_component() != p.component || B.base_region().chart() != p.u.chart)
         continue;
-      const Ellipse_blending_region& R = B.base_region();
       const Eigen::Vector2d v(p.u.x, p.u.y);
-      Alpha_and_gradient<Ellipse_blending_region::Parameter_vector> A = R.alpha_and_gradient(v);
+      Alpha_and_gradient<Ellipse_blending_region::Parameter_vector> A = B.base_region().alpha_and_gradient(v);
       if(A.location.side == Region_side::Retained)
         continue;
       // beta(u), its derivatives with respect to the region's parameters and
       // to u, and the derivative of alpha with respect to u.
-      const bool tube = is_tube(B.added_component());
-      const double k = B.core_stretch();
-      Eigen::Matrix2d Jb;
-      Chart_point u2;
-      Eigen::Matrix<double, 2, 7> du2 = Eigen::Matrix<double, 2, 7>::Zero();
-      Eigen::Matrix2d du2_du = Eigen::Matrix2d::Zero();
-      Eigen::RowVector2d dalpha_du = Eigen::RowVector2d::Zero();
-      std::optional<Core_coordinates> core;
-      if(A.location.side != Region_side::Strip)
-      {
-        // Canonical points are never on the discarded side of a cut-and-glue
-        // blend (canonical_point() locates them the same way, and the
-        // regions are kept valid): only disks of gradual blends get here.
-        CGAL_assertion(B.is_gradual());
-        core = R.core_coordinates(v, -1., k);
-        if(!core)
-        {
-          // On the boundary of the disk to rounding: the strip's inner edge.
-          const std::optional<Strip_coordinates> edge = R.strip_coordinates(v);
-          if(!edge)
-            break;
-          A = R.alpha_and_gradient(R.strip_point(edge->d, edge->theta));
-          A.location.side = Region_side::Strip;
-          A.location.coordinates = *edge;
-        }
-      }
-      if(A.location.side == Region_side::Strip)
-      {
-        // The location found above carries the strip coordinates: no second Newton inversion.
-        const Strip_coordinates& sc = A.location.coordinates;
-        u2 = B.added_side().strip_point(-sc.d, sc.theta, tube, &Jb);
-        if(J)
-        {
-          const auto g = R.strip_coordinates_and_gradient(sc);
-          du2 = -Jb.col(0) * g.d_gradient.transpose() + Jb.col(1) * g.theta_gradient.transpose();
-        }
-        if(D)
-        {
-          const Eigen::Matrix2d G = R.strip_coordinate_derivatives(sc); // d(d, theta)/du
-          du2_du = -Jb.col(0) * G.row(0) + Jb.col(1) * G.row(1);
-          dalpha_du = R.region().blending_derivatives(A.location).d_d * G.row(0);
-        }
-      }
-      else
-      {
-        u2 = B.added_side().core_point(core->t, core->theta, k, &Jb);
-        if(J)
-          du2 = Jb * R.core_gradient(*core, -1., k);
-        if(D) // alpha = h in the disk; beta through the disk coordinates (t, theta)
-          du2_du = core_beta_derivatives(B, v, *core, Jb);
-      }
+      const std::optional<internal::Blend_correspondence> beta =
+        internal::blend_correspondence(B, is_tube(B.added_component()), v, A, J != nullptr, D != nullptr);
+      if(!beta)
+        break;
       const double alpha = A.alpha;
       Eigen::Matrix<double, 3, 2> D1, D2;
       const Eigen::Vector3d x1 = place(p.component, p.u, J, alpha, D ? &D1 : nullptr);
-      const Eigen::Vector3d x2 = place(B.added_component(), u2, J, 1. - alpha, (J || D) ? &D2 : nullptr);
+      const Eigen::Vector3d x2 = place(B.added_component(), beta->u2, J, 1. - alpha, (J || D) ? &D2 : nullptr);
       if(J)
       {
         Jacobian_block blk;
-        blk.first_column = m_blend_offset[b];
-        blk.columns = (x1 - x2) * A.gradient.transpose() + (1. - alpha) * D2 * du2;
+        blk.first_column = blend_offset(b);
+        blk.columns = (x1 - x2) * A.gradient.transpose() + (1. - alpha) * D2 * beta->du2_dq;
         J->push_back(std::move(blk));
       }
       if(D)
-        *D = alpha * D1 + (1. - alpha) * D2 * du2_du + (x1 - x2) * dalpha_du;
+        *D = alpha * D1 + (1. - alpha) * D2 * beta->du2_du + (x1 - x2) * beta->dalpha_du;
       return alpha * x1 + (1. - alpha) * x2;
     }
     return place(p.component, p.u, J, 1., D);
   }
 
-  // dbeta/du in the disk of gradual blend B at base point v with disk
-  // coordinates c (Jb: the added side's [d/dt, d/dtheta]): through the
-  // inverse of the base disk map's Jacobian, or, next to the centre where
-  // theta is not defined (beta is smooth there), by central differences of beta.
-  Eigen::Matrix2d core_beta_derivatives(const Blend& B, const Eigen::Vector2d& v, const Core_coordinates& c,
-                                        const Eigen::Matrix2d& Jb) const
-  {
-    const Ellipse_blending_region& R = B.base_region();
-    const double k = B.core_stretch();
-    Eigen::Matrix2d Jc;
-    R.core_point(c.t, c.theta, -1., k, &Jc);
-    if(std::abs(Jc.determinant()) > 1e-10 * Jc.squaredNorm())
-      return Jb * Jc.inverse();
-    auto beta = [&](const Eigen::Vector2d& w) {
-      const std::optional<Core_coordinates> q = R.core_coordinates(w, -1., k);
-      const Chart_point u2 = q ? B.added_side().core_point(q->t, q->theta, k) : B.added_side().core_point(0., 0., k);
-      return Eigen::Vector2d(u2.x, u2.y);
-    };
-    const double h = 1e-7 * (1. + v.norm());
-    Eigen::Matrix2d P;
-    P.col(0) = (beta(v + Eigen::Vector2d(h, 0.)) - beta(v - Eigen::Vector2d(h, 0.))) / (2. * h);
-    P.col(1) = (beta(v + Eigen::Vector2d(0., h)) - beta(v - Eigen::Vector2d(0., h))) / (2. * h);
-    return P;
-  }
-
   std::vector<Component> m_components;
   std::vector<Blend> m_blends;
   std::vector<Hole_record> m_holes;
-  std::vector<std::size_t> m_component_offset, m_blend_offset;
-  std::size_t m_size = 0;
+  internal::Parameter_layout m_layout;
   std::vector<bool> m_fixed;
   std::vector<std::size_t> m_parent;    // see parent()
   std::vector<Eigen::Vector3d> m_root_t; // see root_translation()

@@ -16,6 +16,7 @@
 #include <cstddef>
 #include <functional>
 #include <map>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <utility>
@@ -296,6 +297,245 @@ inline std::vector<std::size_t> cut_domain(Domain_triangulation& d, const std::f
 
 } // namespace internal
 
+namespace internal {
+
+// The steps of make_unified_mesh(), in order.
+
+// Step 1: the closed domain triangulation of every component that is part
+// of the surface (components added by gradual blends are not: the base's disk
+// expresses them).
+template <class GeomTraits>
+std::vector<Domain_triangulation> component_domain_triangulations(const Blended_shape<GeomTraits>& shape,
+                                                                  int resolution)
+{
+  typedef Blended_shape<GeomTraits> Shape;
+  std::vector<bool> meshed(shape.number_of_components(), true);
+  for(std::size_t b = 0; b < shape.number_of_blends(); ++b)
+    if(shape.blend(b).is_gradual())
+      meshed[shape.blend(b).added_component()] = false;
+  std::vector<Domain_triangulation> domains(shape.number_of_components());
+  for(std::size_t c = 0; c < shape.number_of_components(); ++c)
+  {
+    if(!meshed[c])
+      continue;
+    const Component_shape& s = shape.component(c).shape();
+    if(s.template primitive<typename Shape::Ellipsoid>())
+      domains[c] = sphere_domain(c, resolution);
+    else if(s.number_of_charts() == 1)
+      domains[c] = chart_domain_triangulation(c, Chart_mesh<GeomTraits>(0, s.chart_domain(0), resolution));
+    else
+      throw std::invalid_argument("make_unified_mesh: component " + std::to_string(c) + " (" + s.type_name() +
+                                  ") has no closed domain triangulation");
+  }
+  return domains;
+}
+
+// The cut loop of one side of a blend: its component and the indices of the
+// loop's vertices in that component's domain triangulation.
+struct Cut_loop
+{
+  std::size_t component;
+  std::vector<std::size_t> vertices;
+};
+
+template <class GeomTraits>
+bool is_hole_tube(const Blended_shape<GeomTraits>& shape, std::size_t c)
+{
+  const auto* h = shape.component(c).shape().template primitive<typename Blended_shape<GeomTraits>::Hole>();
+  return h && h->domain() == Hole_domain::Tube;
+}
+
+// Step 2, one side of blend `B` (0: the base, cut on d = 1; 1: the added
+// component, cut on d_2 = 1): cuts its domain triangulation, crossings found
+// by bisection in the region's chart, so each cut vertex has strip
+// coordinates d = 1 to rounding; the part beyond is dropped.
+template <class GeomTraits>
+Cut_loop cut_blend_side(const Blended_shape<GeomTraits>& shape, const Blend& B, int side,
+                        std::vector<Domain_triangulation>& domains)
+{
+  // The level of a cut: d - 1 in the strip, +1 / -3 beyond it on the kept / dropped side.
+  auto level = [](Region_side rs, double d) {
+    return rs == Region_side::Strip ? d - 1. : (rs == Region_side::Retained ? 1. : -3.);
+  };
+  const std::size_t c = side == 0 ? B.base_component() : B.added_component();
+  const Component_shape& s = shape.component(c).shape();
+  const bool tube = is_hole_tube(shape, c);
+  const std::size_t chart = side == 0 ? B.base_region().chart() : B.added_side().chart(tube);
+  auto value = [&](const Shape_point& p) -> double {
+    Chart_point v;
+    if(!s.to_chart(p.u, chart, v))
+      return side == 0 ? 1. : -3.; // not in the region's chart: far outside the curve
+    if(side == 0)
+    {
+      const Region_location loc = B.base_region().locate(Eigen::Vector2d(v.x, v.y));
+      return level(loc.side, loc.coordinates.d);
+    }
+    const Added_side::Location loc = B.added_side().locate(v, tube, B.core_stretch());
+    return level(loc.side, loc.d);
+  };
+  auto crossing = [&](const Shape_point& in, const Shape_point& out) {
+    Chart_point a, z;
+    if(!s.to_chart(in.u, chart, a) || !s.to_chart(out.u, chart, z))
+      throw std::invalid_argument("make_unified_mesh: a cut edge leaves the region's chart; raise the resolution");
+    if(tube && std::abs(z.x - a.x) > M_PI) // unwrap the periodic coordinate
+      z.x += (z.x < a.x) ? 2. * M_PI : -2. * M_PI;
+    double lo = 0., hi = 1.;
+    for(int it = 0; it < 60; ++it)
+    {
+      const double mid = 0.5 * (lo + hi);
+      const Shape_point m(c, Chart_point(chart, a.x + mid * (z.x - a.x), a.y + mid * (z.y - a.y)));
+      (value(m) >= 0. ? lo : hi) = mid;
+    }
+    // the strip side of the bracket: the vertex has strip coordinates (d = 1 to rounding)
+    Chart_point r(chart, a.x + hi * (z.x - a.x), a.y + hi * (z.y - a.y));
+    return Shape_point(c, r);
+  };
+  return Cut_loop{c, cut_domain(domains[c], value, crossing)};
+}
+
+// A vertex of a row of a strip: its strip angle, its global index, and its
+// position in the base region's chart (for orientation).
+struct Strip_row_vertex
+{
+  double theta;
+  std::size_t index;
+  Eigen::Vector2d base_uv;
+};
+
+// The row of the cut loop of one side of blend `B`, from the loop's vertices.
+template <class GeomTraits>
+std::vector<Strip_row_vertex> cut_loop_row(const Blended_shape<GeomTraits>& shape, const Blend& B, std::size_t b,
+                                           int side, const Cut_loop& L, const Domain_triangulation& domain,
+                                           std::size_t offset)
+{
+  const Ellipse_blending_region& R = B.base_region();
+  const Component_shape& s = shape.component(L.component).shape();
+  const bool tube = is_hole_tube(shape, L.component);
+  std::vector<Strip_row_vertex> row;
+  for(std::size_t li : L.vertices)
+  {
+    const Shape_point& p = domain.vertices[li];
+    Strip_row_vertex rv;
+    rv.index = li + offset;
+    Chart_point v;
+    if(side == 0)
+    {
+      s.to_chart(p.u, R.chart(), v);
+      std::optional<Strip_coordinates> sc = R.strip_coordinates(Eigen::Vector2d(v.x, v.y));
+      if(!sc) // a mesh vertex on the strip edge, a rounding error outside: nudge it in
+        sc = R.strip_coordinates(Eigen::Vector2d(v.x, v.y) + 1e-7 * (R.center() - Eigen::Vector2d(v.x, v.y)));
+      if(!sc)
+        throw std::logic_error("make_unified_mesh: a cut vertex is not in its strip");
+      rv.theta = sc->theta;
+      rv.base_uv = Eigen::Vector2d(v.x, v.y);
+    }
+    else
+    {
+      s.to_chart(p.u, B.added_side().chart(tube), v);
+      rv.theta = B.added_side().locate(v, tube, B.core_stretch()).theta;
+      rv.base_uv = R.strip_point(-1., rv.theta);
+    }
+    row.push_back(rv);
+  }
+  if(row.size() < 3)
+    throw std::invalid_argument("make_unified_mesh: the cut of blend " + std::to_string(b) +
+                                " has fewer than 3 vertices; raise the resolution");
+  return row;
+}
+
+// Zips two consecutive rows of a strip by theta into triangles, each
+// oriented counterclockwise in the base chart (charts are oriented:
+// counterclockwise is outward).
+inline void zip_strip_rows(const std::vector<Strip_row_vertex>& P, const std::vector<Strip_row_vertex>& Q,
+                           std::vector<std::array<std::size_t, 3>>& triangles)
+{
+  const std::size_t p = P.size(), q = Q.size();
+  auto theta = [](const std::vector<Strip_row_vertex>& r, std::size_t i) {
+    return r[i % r.size()].theta + 2. * M_PI * double(i / r.size());
+  };
+  auto emit = [&](const Strip_row_vertex& x, const Strip_row_vertex& y, const Strip_row_vertex& z) {
+    const Eigen::Vector2d e1 = y.base_uv - x.base_uv, e2 = z.base_uv - x.base_uv;
+    if(e1.x() * e2.y() - e1.y() * e2.x() >= 0.)
+      triangles.push_back({{x.index, y.index, z.index}});
+    else
+      triangles.push_back({{x.index, z.index, y.index}});
+  };
+  std::size_t i = 0, j = 0;
+  while(i < p || j < q)
+  {
+    const bool advance_p = (j == q) || (i < p && theta(P, i + 1) <= theta(Q, j + 1));
+    if(advance_p)
+    {
+      emit(P[i % p], P[(i + 1) % p], Q[j % q]);
+      ++i;
+    }
+    else
+    {
+      emit(P[i % p], Q[(j + 1) % q], Q[j % q]);
+      ++j;
+    }
+  }
+}
+
+// Step 3, one blend: the strip in its (d, theta) coordinates, rows of
+// constant d between the two cut loops (the intermediate ones with as many
+// points as the longer loop, appended to `vertices`), zipped by theta.
+template <class GeomTraits>
+void triangulate_strip(const Blended_shape<GeomTraits>& shape, std::size_t b, const std::array<Cut_loop, 2>& loops,
+                       const std::vector<Domain_triangulation>& domains, const std::vector<std::size_t>& offset,
+                       int strip_rows, std::vector<Shape_point>& vertices,
+                       std::vector<std::array<std::size_t, 3>>& triangles)
+{
+  const Blend& B = shape.blend(b);
+  const Ellipse_blending_region& R = B.base_region();
+  std::vector<std::vector<Strip_row_vertex>> rows(std::size_t(strip_rows) + 1);
+  for(int side = 0; side < 2; ++side)
+  {
+    const Cut_loop& L = loops[std::size_t(side)];
+    rows[side == 0 ? 0 : std::size_t(strip_rows)] =
+      cut_loop_row(shape, B, b, side, L, domains[L.component], offset[L.component]);
+  }
+  const std::size_t m = std::max(rows.front().size(), rows.back().size());
+  for(int k = 1; k < strip_rows; ++k)
+  {
+    const double d = 1. - 2. * double(k) / strip_rows;
+    for(std::size_t j = 0; j < m; ++j)
+    {
+      const double th = 2. * M_PI * double(j) / double(m);
+      const Eigen::Vector2d v = R.strip_point(d, th);
+      vertices.push_back(Shape_point(B.base_component(), Chart_point(R.chart(), v.x(), v.y())));
+      rows[std::size_t(k)].push_back(Strip_row_vertex{th, vertices.size() - 1, v});
+    }
+  }
+  for(auto& row : rows)
+    std::sort(row.begin(), row.end(),
+              [](const Strip_row_vertex& x, const Strip_row_vertex& y) { return x.theta < y.theta; });
+  for(std::size_t k = 0; k + 1 < rows.size(); ++k)
+    zip_strip_rows(rows[k], rows[k + 1], triangles);
+}
+
+// Step 4: the mesh of the triangles, with only the vertices they use,
+// placed by the blended map.
+template <class GeomTraits>
+CGAL::Surface_mesh<typename GeomTraits::Point_3>
+place_unified_mesh(const Blended_shape<GeomTraits>& shape, const std::vector<Shape_point>& vertices,
+                   const std::vector<std::array<std::size_t, 3>>& triangles)
+{
+  typedef CGAL::Surface_mesh<typename GeomTraits::Point_3> Mesh;
+  Mesh out;
+  std::vector<typename Mesh::Vertex_index> vmap(vertices.size(), Mesh::null_vertex());
+  for(const auto& t : triangles)
+    for(std::size_t k : t)
+      if(vmap[k] == Mesh::null_vertex())
+        vmap[k] = out.add_vertex(shape.point(vertices[k]));
+  for(const auto& t : triangles)
+    if(out.add_face(vmap[t[0]], vmap[t[1]], vmap[t[2]]) == Mesh::null_face())
+      throw std::invalid_argument("make_unified_mesh: the surgery produced a non-manifold mesh; raise the resolution");
+  return out;
+}
+
+} // namespace internal
+
 /*!
 \ingroup PkgBlendedShapeBlending
 
@@ -329,94 +569,14 @@ template <class GeomTraits>
 CGAL::Surface_mesh<typename GeomTraits::Point_3> make_unified_mesh(const Blended_shape<GeomTraits>& shape,
                                                                    int resolution = 24, int strip_rows = 4)
 {
-  typedef Blended_shape<GeomTraits> Shape;
-  typedef CGAL::Surface_mesh<typename GeomTraits::Point_3> Mesh;
   if(resolution < 2 || resolution > 1024 || strip_rows < 1 || strip_rows > 256)
     throw std::invalid_argument("make_unified_mesh: resolution must be in [2, 1024] and strip_rows in [1, 256]");
-
-  // Components expressed only through gradual blends have no mesh of their own.
-  std::vector<bool> meshed(shape.number_of_components(), true);
+  std::vector<internal::Domain_triangulation> domains = internal::component_domain_triangulations(shape, resolution);
+  std::vector<std::array<internal::Cut_loop, 2>> loops(shape.number_of_blends());
   for(std::size_t b = 0; b < shape.number_of_blends(); ++b)
-    if(shape.blend(b).is_gradual())
-      meshed[shape.blend(b).added_component()] = false;
-
-  std::vector<internal::Domain_triangulation> domains(shape.number_of_components());
-  for(std::size_t c = 0; c < shape.number_of_components(); ++c)
-  {
-    if(!meshed[c])
-      continue;
-    const Component_shape& s = shape.component(c).shape();
-    if(s.template primitive<typename Shape::Ellipsoid>())
-      domains[c] = internal::sphere_domain(c, resolution);
-    else if(s.number_of_charts() == 1)
-      domains[c] = internal::chart_domain_triangulation(c, Chart_mesh<GeomTraits>(0, s.chart_domain(0), resolution));
-    else
-      throw std::invalid_argument("make_unified_mesh: component " + std::to_string(c) + " (" + s.type_name() +
-                                  ") has no closed domain triangulation");
-  }
-
-  // The level of a cut: d - 1 in the strip, +1 / -3 beyond it on the kept / dropped side.
-  auto level = [](Region_side side, double d) {
-    return side == Region_side::Strip ? d - 1. : (side == Region_side::Retained ? 1. : -3.);
-  };
-  struct Loop
-  {
-    std::size_t component;
-    std::vector<std::size_t> vertices;
-  };
-  std::vector<std::array<Loop, 2>> loops(shape.number_of_blends());
-  auto is_tube = [&](std::size_t c) {
-    const auto* h = shape.component(c).shape().template primitive<typename Shape::Hole>();
-    return h && h->domain() == Hole_domain::Tube;
-  };
-
-  for(std::size_t b = 0; b < shape.number_of_blends(); ++b)
-  {
-    const Blend& B = shape.blend(b);
-    if(B.is_gradual())
-      continue;
-    for(int side = 0; side < 2; ++side)
-    {
-      const std::size_t c = side == 0 ? B.base_component() : B.added_component();
-      const Component_shape& s = shape.component(c).shape();
-      const bool tube = is_tube(c);
-      const std::size_t chart = side == 0 ? B.base_region().chart() : B.added_side().chart(tube);
-      auto locate = [&](const Shape_point& p, Chart_point& v) -> double {
-        if(!s.to_chart(p.u, chart, v))
-          return side == 0 ? 1. : -3.; // not in the region's chart: far outside the curve
-        if(side == 0)
-        {
-          const Region_location loc = B.base_region().locate(Eigen::Vector2d(v.x, v.y));
-          return level(loc.side, loc.coordinates.d);
-        }
-        const Added_side::Location loc = B.added_side().locate(v, tube, B.core_stretch());
-        return level(loc.side, loc.d);
-      };
-      auto value = [&](const Shape_point& p) {
-        Chart_point v;
-        return locate(p, v);
-      };
-      auto crossing = [&](const Shape_point& in, const Shape_point& out) {
-        Chart_point a, z;
-        if(!s.to_chart(in.u, chart, a) || !s.to_chart(out.u, chart, z))
-          throw std::invalid_argument("make_unified_mesh: a cut edge leaves the region's chart; raise the resolution");
-        if(tube && std::abs(z.x - a.x) > M_PI) // unwrap the periodic coordinate
-          z.x += (z.x < a.x) ? 2. * M_PI : -2. * M_PI;
-        double lo = 0., hi = 1.;
-        for(int it = 0; it < 60; ++it)
-        {
-          const double mid = 0.5 * (lo + hi);
-          const Shape_point m(c, Chart_point(chart, a.x + mid * (z.x - a.x), a.y + mid * (z.y - a.y)));
-          (value(m) >= 0. ? lo : hi) = mid;
-        }
-        // the strip side of the bracket: the vertex has strip coordinates (d = 1 to rounding)
-        Chart_point r(chart, a.x + hi * (z.x - a.x), a.y + hi * (z.y - a.y));
-        return Shape_point(c, r);
-      };
-      loops[b][std::size_t(side)].component = c;
-      loops[b][std::size_t(side)].vertices = internal::cut_domain(domains[c], value, crossing);
-    }
-  }
+    if(!shape.blend(b).is_gradual())
+      for(int side = 0; side < 2; ++side)
+        loops[b][std::size_t(side)] = internal::cut_blend_side(shape, shape.blend(b), side, domains);
 
   // Global vertices: the components' triangulations, then the strip rows.
   std::vector<Shape_point> vertices;
@@ -429,117 +589,10 @@ CGAL::Surface_mesh<typename GeomTraits::Point_3> make_unified_mesh(const Blended
     for(const auto& t : domains[c].triangles)
       triangles.push_back({{t[0] + offset[c], t[1] + offset[c], t[2] + offset[c]}});
   }
-
   for(std::size_t b = 0; b < shape.number_of_blends(); ++b)
-  {
-    const Blend& B = shape.blend(b);
-    if(B.is_gradual())
-      continue;
-    const Ellipse_blending_region& R = B.base_region();
-    struct Row_vertex
-    {
-      double theta;
-      std::size_t index;
-      Eigen::Vector2d base_uv; // in the base region's chart, for orientation
-    };
-    std::vector<std::vector<Row_vertex>> rows(std::size_t(strip_rows) + 1);
-    for(int side = 0; side < 2; ++side)
-    {
-      const Loop& L = loops[b][std::size_t(side)];
-      const std::size_t c = L.component;
-      const Component_shape& s = shape.component(c).shape();
-      const bool tube = is_tube(c);
-      std::vector<Row_vertex>& row = rows[side == 0 ? 0 : std::size_t(strip_rows)];
-      for(std::size_t li : L.vertices)
-      {
-        const Shape_point& p = domains[c].vertices[li];
-        Row_vertex rv;
-        rv.index = li + offset[c];
-        Chart_point v;
-        if(side == 0)
-        {
-          s.to_chart(p.u, R.chart(), v);
-          std::optional<Strip_coordinates> sc = R.strip_coordinates(Eigen::Vector2d(v.x, v.y));
-          if(!sc) // a mesh vertex on the strip edge, a rounding error outside: nudge it in
-            sc = R.strip_coordinates(Eigen::Vector2d(v.x, v.y) + 1e-7 * (R.center() - Eigen::Vector2d(v.x, v.y)));
-          if(!sc)
-            throw std::logic_error("make_unified_mesh: a cut vertex is not in its strip");
-          rv.theta = sc->theta;
-          rv.base_uv = Eigen::Vector2d(v.x, v.y);
-        }
-        else
-        {
-          s.to_chart(p.u, B.added_side().chart(tube), v);
-          rv.theta = B.added_side().locate(v, tube, B.core_stretch()).theta;
-          rv.base_uv = R.strip_point(-1., rv.theta);
-        }
-        row.push_back(rv);
-      }
-      if(row.size() < 3)
-        throw std::invalid_argument("make_unified_mesh: the cut of blend " + std::to_string(b) +
-                                    " has fewer than 3 vertices; raise the resolution");
-    }
-    // Intermediate rows, as many points as the longer loop.
-    const std::size_t m = std::max(rows.front().size(), rows.back().size());
-    for(int k = 1; k < strip_rows; ++k)
-    {
-      const double d = 1. - 2. * double(k) / strip_rows;
-      for(std::size_t j = 0; j < m; ++j)
-      {
-        const double th = 2. * M_PI * double(j) / double(m);
-        const Eigen::Vector2d v = R.strip_point(d, th);
-        vertices.push_back(Shape_point(B.base_component(), Chart_point(R.chart(), v.x(), v.y())));
-        rows[std::size_t(k)].push_back(Row_vertex{th, vertices.size() - 1, v});
-      }
-    }
-    for(auto& row : rows)
-      std::sort(row.begin(), row.end(), [](const Row_vertex& x, const Row_vertex& y) { return x.theta < y.theta; });
-    // Zip consecutive rows by theta; orient each triangle counterclockwise in the base chart.
-    for(std::size_t k = 0; k + 1 < rows.size(); ++k)
-    {
-      const std::vector<Row_vertex>& P = rows[k];
-      const std::vector<Row_vertex>& Q = rows[k + 1];
-      const std::size_t p = P.size(), q = Q.size();
-      auto theta = [](const std::vector<Row_vertex>& r, std::size_t i) {
-        return r[i % r.size()].theta + 2. * M_PI * double(i / r.size());
-      };
-      auto emit = [&](const Row_vertex& x, const Row_vertex& y, const Row_vertex& z) {
-        const Eigen::Vector2d e1 = y.base_uv - x.base_uv, e2 = z.base_uv - x.base_uv;
-        const double o = e1.x() * e2.y() - e1.y() * e2.x();
-        if(o >= 0.) // charts are oriented: counterclockwise is outward
-          triangles.push_back({{x.index, y.index, z.index}});
-        else
-          triangles.push_back({{x.index, z.index, y.index}});
-      };
-      std::size_t i = 0, j = 0;
-      while(i < p || j < q)
-      {
-        const bool advance_p = (j == q) || (i < p && theta(P, i + 1) <= theta(Q, j + 1));
-        if(advance_p)
-        {
-          emit(P[i % p], P[(i + 1) % p], Q[j % q]);
-          ++i;
-        }
-        else
-        {
-          emit(P[i % p], Q[(j + 1) % q], Q[j % q]);
-          ++j;
-        }
-      }
-    }
-  }
-
-  // Assemble: only the vertices triangles use, placed by the blended map.
-  Mesh out;
-  std::vector<typename Mesh::Vertex_index> vmap(vertices.size(), Mesh::null_vertex());
-  for(const auto& t : triangles)
-    for(std::size_t k : t)
-      if(vmap[k] == Mesh::null_vertex())
-        vmap[k] = out.add_vertex(shape.point(vertices[k]));
-  for(const auto& t : triangles)
-    if(out.add_face(vmap[t[0]], vmap[t[1]], vmap[t[2]]) == Mesh::null_face())
-      throw std::invalid_argument("make_unified_mesh: the surgery produced a non-manifold mesh; raise the resolution");
-  return out;
+    if(!shape.blend(b).is_gradual())
+      internal::triangulate_strip(shape, b, loops[b], domains, offset, strip_rows, vertices, triangles);
+  return internal::place_unified_mesh(shape, vertices, triangles);
 }
 
 } // namespace Blended_shapes

@@ -258,10 +258,10 @@ template <class GeomTraits>
 class Quotient_domain
 {
 public:
-  typedef GeomTraits Geom_traits;                         ///< the kernel
-  typedef typename Geom_traits::Point_3 Point_3;          ///< the point type
   typedef Blended_shape<GeomTraits> Shape;                ///< the blended shape
   typedef Blended_shape_pieces<GeomTraits> Pieces;        ///< the chart meshes of the shape
+  typedef typename Shape::Geom_traits Geom_traits;        ///< the kernel (the shape's)
+  typedef typename Shape::Point_3 Point_3;                ///< the point type
   typedef Chart_mesh<GeomTraits> Piece_mesh;              ///< one chart's mesh
   typedef typename Piece_mesh::vertex_descriptor vertex_descriptor; ///< a vertex of a piece
   typedef typename Piece_mesh::face_descriptor face_descriptor;     ///< a face of a piece

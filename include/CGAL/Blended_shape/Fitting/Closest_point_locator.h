@@ -61,7 +61,8 @@ barycentric coordinates, hence its domain point, at which the model is then
 evaluated analytically (the mesh is only the search structure).
 
 The chart meshes are held by reference: call rebuild() after their
-positions changed. With a face mask (set_face_mask()), only the faces it
+positions changed. The queries are const and change nothing: several
+threads may query one locator at once (not during a rebuild()). With a face mask (set_face_mask()), only the faces it
 keeps are searched: the per-component pieces of a blended shape (sec. 3.3)
 omit the faces wholly in a discarded part of the domain.
 */
@@ -106,6 +107,9 @@ public:
     if(m_tree.empty())
       throw std::invalid_argument("Closest_point_locator: no face to search (the face mask keeps none)");
     m_tree.build();
+    // The search tree of the unbounded queries, built now rather than by the
+    // first query: the queries (of several threads at once) then only read.
+    m_tree.accelerate_distance_queries();
     m_any_primitive = m_tree.any_reference_point_and_id().second;
   }
 
@@ -197,6 +201,176 @@ struct Foot_point
   double squared_distance;
 };
 
+// The state of refine_foot_point(): the current chart point `u`, model
+// point `x`, squared distance `d2` to `p` and chart Jacobian `J`.
+template <class Model>
+class Foot_point_search
+{
+public:
+  typedef typename Model::Chart_jacobian Chart_jacobian;
+
+  Foot_point_search(const Model& model, const Eigen::Vector3d& p, double relative_tolerance)
+    : m_model(model), m_p(p), m_relative_tolerance(relative_tolerance)
+  {}
+
+  // From the chart in which the start is canonical: a start on the rim of
+  // its chart (a tessellation point near a chart seam) would otherwise be
+  // stuck there by steps that leave the chart.
+  void start_at(const Chart_point& start, const Eigen::Vector3d* start_point, const Chart_jacobian* start_jacobian)
+  {
+    if(!m_model.canonical_surface_point(start, u))
+      throw std::invalid_argument("refine_closest_point: the start is not a point of the model's surface");
+    const bool moved = u.chart != start.chart || u.x != start.x || u.y != start.y;
+    if(start_point != nullptr && start_jacobian != nullptr && !moved)
+    {
+      x = *start_point;
+      J = *start_jacobian;
+    }
+    else
+      x = eval(u, J);
+    d2 = (m_p - x).squaredNorm();
+  }
+
+  // One iteration: true if it brought the point closer.
+  bool iterate()
+  {
+    const State before = state();
+    bool converged, left_surface;
+    const bool improved = step_from(u, J, converged, left_surface);
+    if(!converged && left_surface)
+      return step_from_other_charts(before) || improved;
+    return improved;
+  }
+
+  Foot_point result() const { return Foot_point{u, x, d2}; }
+  double squared_distance() const { return d2; }
+
+private:
+  struct State
+  {
+    Chart_point u;
+    Eigen::Vector3d x;
+    double d2;
+    Chart_jacobian J;
+  };
+  State state() const { return State{u, x, d2, J}; }
+  void restore(const State& s) { u = s.u; x = s.x; d2 = s.d2; J = s.J; }
+
+  Eigen::Vector3d eval(const Chart_point& v, Chart_jacobian& D) const
+  {
+    const auto xv = m_model.point_and_chart_jacobian(v, D);
+    return Eigen::Vector3d(xv.x(), xv.y(), xv.z());
+  }
+
+  // One safeguarded Gauss-Newton step in the coordinates of chart point
+  // `from` (the current point, or another representative of it) with the
+  // chart Jacobian `Jf` there: true if it brought the point closer (then u,
+  // x, d2, J are the new point's). `converged`: no step is worth taking;
+  // `left_surface`: a trial left the chart or the surface.
+  bool step_from(const Chart_point& from, const Chart_jacobian& Jf, bool& converged, bool& left_surface)
+  {
+      converged = left_surface = false;
+      const double j00 = Jf.col(0).squaredNorm(), j11 = Jf.col(1).squaredNorm(), j01 = Jf.col(0).dot(Jf.col(1));
+      const double t = j00 + j11;
+      if(!(t > 0.) || !std::isfinite(t))
+        return false;
+      const Eigen::Vector3d r = m_p - x;
+      const double g0 = Jf.col(0).dot(r), g1 = Jf.col(1).dot(r);
+      // Levenberg-regularized: where exponents above 1 flatten the map (its chart
+      // Jacobian loses rank on the poles and axes) the step still moves along
+      // the direction that is left. When one column is much shorter than the
+      // other (next to such a place) and the step fails, it is retried with a
+      // strong damping of that direction: its Gauss-Newton step is then far too
+      // long, and would otherwise take the good step along the other one with it.
+      const bool ill_conditioned = (std::min)(j00, j11) < 1e-3 * t;
+      for(int level = 0; level < (ill_conditioned ? 2 : 1); ++level)
+      {
+        // the 2 x 2 system (J^T J + mu tr I) step = J^T r, solved in closed form
+        // (positive definite: the damping keeps the determinant away from zero)
+        const double mu = (level == 0 ? 1e-10 : 1e-3) * t;
+        const double a = j00 + mu, c = j11 + mu, det = a * c - j01 * j01;
+        if(!(det > 0.))
+          return false;
+        Eigen::Vector2d step((c * g0 - j01 * g1) / det, (a * g1 - j01 * g0) / det);
+        const double length2 = step.squaredNorm();
+        // At the foot point to the accuracy that matters: a tangential error
+        // of 1e-9 chart units changes the distance by ~1e-18 of the model's size.
+        if(!(length2 > 1e-18) || (level == 0 && step.dot(Eigen::Vector2d(g0, g1)) <= m_relative_tolerance * d2))
+        {
+          converged = true;
+          return false;
+        }
+        // A step this short that fails at full length fails on rounding alone
+        // (the squared distance is only known to ~1e-13 relatively): halving it
+        // cannot help.
+        // Next to a point where the chart map is singular (exponents above 1
+        // on both the equator and a meridian: both columns vanish) the
+        // Gauss-Newton step overshoots by orders of magnitude: up to 12 halvings
+        // (a step 4096 times shorter), down to that length.
+        const int halvings = (length2 < 1e-14) ? 1 : 12;
+        for(int half = 0; half < halvings && (half < 4 || step.squaredNorm() >= 1e-14); ++half, step *= 0.5)
+        {
+          Chart_point v;
+          if(!m_model.canonical_surface_point(Chart_point(from.chart, from.x + step[0], from.y + step[1]), v))
+          {
+            left_surface = true; // off the chart or into a discarded part of the domain
+            continue;
+          }
+          const Eigen::Vector3d xv = eval(v, m_Jv); // the Jacobian of the next step, if this one is kept
+          const double dv = (m_p - xv).squaredNorm();
+          if(dv < d2)
+          {
+            u = v; x = xv; d2 = dv; J = m_Jv;
+            return true;
+          }
+        }
+        if(length2 < 1e-14)
+        {
+          converged = true;
+          return false;
+        }
+      }
+      return false;
+  }
+
+  // A step toward the discarded edge of a blend's strip (or disk): the
+  // surface goes on in the added component's chart, so a step is also taken
+  // from the same point (`before`) expressed there, with a chart Jacobian by
+  // central differences (rare); the closer result is kept. True if one of
+  // them is closer than the step already taken from `before`.
+  bool step_from_other_charts(const State& before)
+  {
+    const std::vector<Chart_point> others = m_model.alternative_chart_points(before.u);
+    const State first = state();
+    for(const Chart_point& w : others)
+    {
+      restore(before);
+      const double h = 1e-7;
+      Chart_jacobian Jw;
+      for(int k = 0; k < 2; ++k)
+      {
+        const Chart_point a(w.chart, w.x + (k == 0 ? h : 0.), w.y + (k == 1 ? h : 0.));
+        const Chart_point b(w.chart, w.x - (k == 0 ? h : 0.), w.y - (k == 1 ? h : 0.));
+        const auto xa = m_model.point(a), xb = m_model.point(b);
+        Jw.col(k) = Eigen::Vector3d(xa.x() - xb.x(), xa.y() - xb.y(), xa.z() - xb.z()) / (2. * h);
+      }
+      bool c2, l2;
+      if(step_from(w, Jw, c2, l2) && d2 < first.d2)
+        return true;
+      restore(first);
+    }
+    return false;
+  }
+
+  const Model& m_model;
+  const Eigen::Vector3d m_p;
+  const double m_relative_tolerance;
+  Chart_point u;
+  Eigen::Vector3d x;
+  double d2 = 0.;
+  Chart_jacobian J, m_Jv;
+};
+
 /// refine_closest_point(), also returning the model point and the squared
 /// distance at the result (computed as `(p - model.point(u)).squaredNorm()` would be).
 /// With `relative_tolerance` > 0 it also stops when a Gauss-Newton step
@@ -213,141 +387,12 @@ Foot_point refine_foot_point(const Model& model, const Eigen::Vector3d& p, Chart
                              double relative_tolerance = 0., const Eigen::Vector3d* start_point = nullptr,
                              const typename Model::Chart_jacobian* start_jacobian = nullptr)
 {
-  typedef typename Model::Chart_jacobian Chart_jacobian;
-  auto eval = [&](const Chart_point& v, Chart_jacobian& D) {
-    const auto x = model.point_and_chart_jacobian(v, D);
-    return Eigen::Vector3d(x.x(), x.y(), x.z());
-  };
-  // From the chart in which the start is canonical: a start on the rim of
-  // its chart (a tessellation point near a chart seam) would otherwise be
-  // stuck there by steps that leave the chart.
-  Chart_point u;
-  if(!model.canonical_surface_point(start, u))
-    throw std::invalid_argument("refine_closest_point: the start is not a point of the model's surface");
-  const bool moved = u.chart != start.chart || u.x != start.x || u.y != start.y;
-  Chart_jacobian J, Jv;
-  Eigen::Vector3d x;
-  if(start_point != nullptr && start_jacobian != nullptr && !moved)
-  {
-    x = *start_point;
-    J = *start_jacobian;
-  }
-  else
-    x = eval(u, J);
-  double d2 = (p - x).squaredNorm();
-  // One safeguarded Gauss-Newton step in the coordinates of chart point
-  // `from` (the current point, or another representative of it) with the
-  // chart Jacobian `Jf` there: true if it brought the point closer (then u,
-  // x, d2, J are the new point's). `converged`: no step is worth taking;
-  // `left_surface`: a trial left the chart or the surface.
-  auto step_from = [&](const Chart_point& from, const Chart_jacobian& Jf, bool& converged, bool& left_surface) {
-    converged = left_surface = false;
-    const double j00 = Jf.col(0).squaredNorm(), j11 = Jf.col(1).squaredNorm(), j01 = Jf.col(0).dot(Jf.col(1));
-    const double t = j00 + j11;
-    if(!(t > 0.) || !std::isfinite(t))
-      return false;
-    const Eigen::Vector3d r = p - x;
-    const double g0 = Jf.col(0).dot(r), g1 = Jf.col(1).dot(r);
-    // Levenberg-regularized: where exponents above 1 flatten the map (its chart
-    // Jacobian loses rank on the poles and axes) the step still moves along
-    // the direction that is left. When one column is much shorter than the
-    // other (next to such a place) and the step fails, it is retried with a
-    // strong damping of that direction: its Gauss-Newton step is then far too
-    // long, and would otherwise take the good step along the other one with it.
-    const bool ill_conditioned = (std::min)(j00, j11) < 1e-3 * t;
-    for(int level = 0; level < (ill_conditioned ? 2 : 1); ++level)
-    {
-      // the 2 x 2 system (J^T J + mu tr I) step = J^T r, solved in closed form
-      // (positive definite: the damping keeps the determinant away from zero)
-      const double mu = (level == 0 ? 1e-10 : 1e-3) * t;
-      const double a = j00 + mu, c = j11 + mu, det = a * c - j01 * j01;
-      if(!(det > 0.))
-        return false;
-      Eigen::Vector2d step((c * g0 - j01 * g1) / det, (a * g1 - j01 * g0) / det);
-      const double length2 = step.squaredNorm();
-      // At the foot point to the accuracy that matters: a tangential error
-      // of 1e-9 chart units changes the distance by ~1e-18 of the model's size.
-      if(!(length2 > 1e-18) || (level == 0 && step.dot(Eigen::Vector2d(g0, g1)) <= relative_tolerance * d2))
-      {
-        converged = true;
-        return false;
-      }
-      // A step this short that fails at full length fails on rounding alone
-      // (the squared distance is only known to ~1e-13 relatively): halving it
-      // cannot help.
-      // Next to a point where the chart map is singular (exponents above 1
-      // on both the equator and a meridian: both columns vanish) the
-      // Gauss-Newton step overshoots by orders of magnitude: up to 12 halvings
-      // (a step 4096 times shorter), down to that length.
-      const int halvings = (length2 < 1e-14) ? 1 : 12;
-      for(int half = 0; half < halvings && (half < 4 || step.squaredNorm() >= 1e-14); ++half, step *= 0.5)
-      {
-        Chart_point v;
-        if(!model.canonical_surface_point(Chart_point(from.chart, from.x + step[0], from.y + step[1]), v))
-        {
-          left_surface = true; // off the chart or into a discarded part of the domain
-          continue;
-        }
-        const Eigen::Vector3d xv = eval(v, Jv); // the Jacobian of the next step, if this one is kept
-        const double dv = (p - xv).squaredNorm();
-        if(dv < d2)
-        {
-          u = v; x = xv; d2 = dv; J = Jv;
-          return true;
-        }
-      }
-      if(length2 < 1e-14)
-      {
-        converged = true;
-        return false;
-      }
-    }
-    return false;
-  };
-  for(int it = 0; it < max_iterations && d2 > 0.; ++it)
-  {
-    const Chart_point u0 = u;
-    const Eigen::Vector3d x0 = x;
-    const double d0 = d2;
-    const Chart_jacobian J0 = J;
-    bool converged, left_surface;
-    bool improved = step_from(u, J, converged, left_surface);
-    // A step toward the discarded edge of a blend's strip (or disk): the
-    // surface goes on in the added component's chart, so a step is also
-    // taken from the same point expressed there, with a chart Jacobian by
-    // central differences (rare), and the closer result is kept.
-    if(!converged && left_surface)
-    {
-      const std::vector<Chart_point> others = model.alternative_chart_points(u0);
-      const Chart_point u1 = u;
-      const Eigen::Vector3d x1 = x;
-      const double d1 = d2;
-      const Chart_jacobian J1 = J;
-      for(const Chart_point& w : others)
-      {
-        u = u0; x = x0; d2 = d0; J = J0;
-        const double h = 1e-7;
-        Chart_jacobian Jw;
-        for(int k = 0; k < 2; ++k)
-        {
-          const Chart_point a(w.chart, w.x + (k == 0 ? h : 0.), w.y + (k == 1 ? h : 0.));
-          const Chart_point b(w.chart, w.x - (k == 0 ? h : 0.), w.y - (k == 1 ? h : 0.));
-          const auto xa = model.point(a), xb = model.point(b);
-          Jw.col(k) = Eigen::Vector3d(xa.x() - xb.x(), xa.y() - xb.y(), xa.z() - xb.z()) / (2. * h);
-        }
-        bool c2, l2;
-        if(step_from(w, Jw, c2, l2) && d2 < d1)
-        {
-          improved = true;
-          break;
-        }
-        u = u1; x = x1; d2 = d1; J = J1;
-      }
-    }
-    if(!improved)
+  Foot_point_search<Model> search(model, p, relative_tolerance);
+  search.start_at(start, start_point, start_jacobian);
+  for(int it = 0; it < max_iterations && search.squared_distance() > 0.; ++it)
+    if(!search.iterate())
       break;
-  }
-  return Foot_point{u, x, d2};
+  return search.result();
 }
 
 } // namespace internal

@@ -42,10 +42,10 @@ template <class GeomTraits>
 class Deformable_blended_model
 {
 public:
-  typedef GeomTraits Geom_traits;                  ///< the kernel
-  typedef typename Geom_traits::Point_3 Point_3;   ///< the point type
-  typedef typename Geom_traits::Vector_3 Vector_3; ///< the vector type
-  typedef Blended_shape<GeomTraits> Shape_type;    ///< the blended shape
+  typedef Blended_shape<GeomTraits> Shape_type;          ///< the blended shape
+  typedef typename Shape_type::Geom_traits Geom_traits; ///< the kernel (the shape's)
+  typedef typename Shape_type::Point_3 Point_3;         ///< the point type
+  typedef typename Shape_type::Vector_3 Vector_3;       ///< the vector type
   /// The model Jacobian `L = dx/dq`, 3 x number_of_parameters().
   typedef Eigen::Matrix<double, 3, Eigen::Dynamic> Jacobian;
   /// The chart Jacobian of the model point: its derivatives with respect to the two chart coordinates.

@@ -7,6 +7,7 @@
 #include <CGAL/Blended_shape/Fitting/Fitting_settings.h>
 #include <CGAL/Blended_shape/Fitting/Robust_loss.h>
 #include <CGAL/Blended_shape/Fitting/Fitting_visitor.h>
+#include <CGAL/Blended_shape/Fitting/internal/Point_blocks.h>
 #include <CGAL/Blended_shape/IO/check_points.h>
 #include <CGAL/Blended_shape/internal/Parameter_table.h>
 
@@ -110,6 +111,11 @@ points until steady state: the relative energy decrease of a step is below
 `energy_tolerance` and the scaled force below `force_tolerance` for
 `steady_iterations` consecutive steps.
 
+The per-point work of (2), in every sweep, and the sums of the linear system
+of (3) run on `Fitting_settings::number_of_threads` threads (with TBB), with
+results that are bit-identical at any number of threads: the points are
+summed in fixed blocks of 256, whose sums are added in block order.
+
 \tparam Model a model of the concept `DeformableModel`: Deformable_model (one
   primitive) or Deformable_blended_model (a blended shape of fixed structure).
 */
@@ -130,7 +136,7 @@ public:
   Deformable_model_fitter(const PointRange& points, const Model& initial_model,
                           const Fitting_settings& settings = Fitting_settings(),
                           PointMap point_map = PointMap())
-    : m_model(initial_model), m_settings(settings)
+    : m_model(initial_model), m_settings(settings), m_blocks(settings.number_of_threads)
   {
     check_points(points, point_map);
     check_settings(settings);
@@ -377,15 +383,29 @@ public:
   /// The input points, as read (in their original order).
   const std::vector<Eigen::Vector3d>& points() const { return m_points; }
 
+  /// The smallest size (a shape length bounded below by 0 or more, e.g. a
+  /// semi-axis) a fit gives, relative to the diameter of the points about
+  /// their centroid (see Fitting_settings::maximum_size_factor for the largest).
+  static constexpr double minimum_size_ratio = 1e-9;
+
 private:
-  // The model's bounds, with shape lengths also capped by the data's size.
-  double lower_bound(std::size_t i) const { return m_model.parameter_lower_bound(i); }
+  // The model's bounds, with shape lengths also bounded by the data's size:
+  // sizes (lengths bounded below by 0 or more) from minimum_size_ratio times
+  // it (a size shrinking to nothing would make the normals overflow), lengths
+  // up to maximum_size_factor times it.
+  double lower_bound(std::size_t i) const
+  {
+    const double b = m_model.parameter_lower_bound(i);
+    return is_shape_length(i) && b >= 0. ? (std::max)(b, minimum_size_ratio * m_diameter) : b;
+  }
   double upper_bound(std::size_t i) const
   {
     const double b = m_model.parameter_upper_bound(i);
-    if(m_model.is_pose_parameter(i) || m_model.parameter_kind(i) != Parameter_kind::Length)
-      return b;
-    return (std::min)(b, m_settings.maximum_size_factor * m_diameter);
+    return is_shape_length(i) ? (std::min)(b, m_settings.maximum_size_factor * m_diameter) : b;
+  }
+  bool is_shape_length(std::size_t i) const
+  {
+    return !m_model.is_pose_parameter(i) && m_model.parameter_kind(i) == Parameter_kind::Length;
   }
 
   // Closest points of the points `active` on `model`: chart points, normals
@@ -398,18 +418,27 @@ private:
     Robust_loss loss; // of these distances
   };
 
-  // \throws std::invalid_argument on settings the fit cannot work with.
-  static void check_settings(const Fitting_settings& settings)
+  // \throws std::invalid_argument naming the first setting the fit cannot work with.
+  static void check_settings(const Fitting_settings& s)
   {
-    if(settings.mesh_resolution < 2 || settings.maximum_iterations == 0 || settings.steady_iterations == 0 ||
-       !(settings.energy_tolerance >= 0.) || !(settings.force_tolerance >= 0.) ||
-       !(settings.maximum_size_factor > 0.) || !(settings.placement_stiffness >= 0.) ||
-       !std::isfinite(settings.placement_stiffness) || settings.projection_iterations < 1 ||
-       !(settings.maximum_running_time > 0.))
-      throw std::invalid_argument("Deformable_model_fitter: invalid settings (mesh_resolution >= 2, "
-                                  "maximum_iterations >= 1, steady_iterations >= 1, projection_iterations >= 1, "
-                                  "tolerances >= 0, maximum_size_factor > 0, a finite placement_stiffness >= 0 and "
-                                  "maximum_running_time > 0 are required)");
+    auto require = [](bool ok, const char* what) {
+      if(!ok)
+        throw std::invalid_argument(std::string("Deformable_model_fitter: invalid settings: ") + what);
+    };
+    require(s.mesh_resolution >= 2, "mesh_resolution must be at least 2 (10 is the default)");
+    require(s.maximum_iterations >= 1, "maximum_iterations (number_of_iterations) must be at least 1");
+    require(s.steady_iterations >= 1, "steady_iterations must be at least 1");
+    require(s.projection_iterations >= 1, "projection_iterations must be at least 1");
+    require(s.energy_tolerance >= 0. && std::isfinite(s.energy_tolerance),
+            "energy_tolerance must be a finite number >= 0");
+    require(s.force_tolerance >= 0. && std::isfinite(s.force_tolerance),
+            "force_tolerance must be a finite number >= 0");
+    require(s.rest_tolerance >= 0. && s.rest_tolerance < 1.,
+            "rest_tolerance must be in [0, 1) (a relative energy decrease per step; 1e-4 is the default)");
+    require(s.maximum_size_factor > 0., "maximum_size_factor must be > 0");
+    require(s.placement_stiffness >= 0. && std::isfinite(s.placement_stiffness),
+            "placement_stiffness must be a finite number >= 0");
+    require(s.maximum_running_time > 0., "maximum_running_time must be > 0 seconds");
   }
 
   // Copies the points as `double`, with the two length scales of the fit.
@@ -456,14 +485,21 @@ private:
     m_dt_scale = 1.;
   }
 
-  // The convergence test of one step of run(): it stalled, or it was
+  // The convergence test of one step of run(): it stalled; or it was
   // accepted with a relative energy decrease and a scaled force under the
-  // tolerances.
+  // tolerances (a stationary point); or accepted with a relative energy
+  // decrease under `rest_tolerance` (the creeping rest of a shape the model
+  // cannot represent, see Fitting_settings::rest_tolerance).
   bool is_at_rest(const Step_report& r) const
   {
-    const double decrease = (r.energy_before - r.energy_after) / (std::max)(r.energy_before, 1e-300);
-    return r.stalled || (r.accepted && decrease <= m_settings.energy_tolerance &&
-                         r.scaled_force <= m_settings.force_tolerance);
+    const double decrease = relative_decrease(r);
+    return r.stalled || (r.accepted && ((decrease <= m_settings.energy_tolerance &&
+                                         r.scaled_force <= m_settings.force_tolerance) ||
+                                        decrease <= m_settings.rest_tolerance));
+  }
+  static double relative_decrease(const Step_report& r)
+  {
+    return (r.energy_before - r.energy_after) / (std::max)(r.energy_before, 1e-300);
   }
 
   // The linear system of the dynamics at fixed correspondences (eq. 7, 8),
@@ -479,42 +515,62 @@ private:
     double energy = 0.;
   };
 
+  // The sums of assemble_normal_equations() over some points (H's lower triangle).
+  struct Normal_equation_sums
+  {
+    Eigen::MatrixXd H;
+    Eigen::VectorXd g;
+    double energy = 0.;
+    Normal_equation_sums& operator+=(const Normal_equation_sums& other)
+    {
+      H += other.H;
+      g += other.g;
+      energy += other.energy;
+      return *this;
+    }
+  };
+
   Normal_equations assemble_normal_equations(const std::vector<std::size_t>& active, const Correspondences& corr) const
   {
-    const std::size_t n = m_model.number_of_parameters();
+    const Eigen::Index n = Eigen::Index(m_model.number_of_parameters());
     Normal_equations system;
-    system.H = Eigen::MatrixXd::Zero(Eigen::Index(n), Eigen::Index(n));
-    system.g = Eigen::VectorXd::Zero(Eigen::Index(n));
     system.w.resize(active.size());
-    Eigen::MatrixXd& H = system.H;
-    Eigen::VectorXd Jn(static_cast<Eigen::Index>(n));
-    std::vector<Eigen::Index> nonzero;
-    typename Model::Jacobian L;
-    for(std::size_t k = 0; k < active.size(); ++k)
-    {
-      const Point_3 x = m_model.point_and_jacobian(corr.u[k], L);
-      const double r = corr.normal[k].dot(m_points[active[k]] - Eigen::Vector3d(x.x(), x.y(), x.z()));
-      const double w = system.w[k] = corr.loss.weight(corr.distance[k]);
-      Jn.noalias() = L.transpose() * corr.normal[k];
-      system.g.noalias() += (w * r) * Jn;
-      system.energy += 0.5 * w * r * r;
-      // A point of a blended model depends on the few components and blends
-      // that reach it: the outer product only over its nonzero entries.
-      nonzero.clear();
-      for(Eigen::Index i = 0; i < Jn.size(); ++i)
-        if(Jn[i] != 0.)
-          nonzero.push_back(i);
-      if(2 * nonzero.size() > n)
-        H.template selfadjointView<Eigen::Lower>().rankUpdate(Jn, w);
-      else
-        for(std::size_t a = 0; a < nonzero.size(); ++a)
-        {
-          const double wa = w * Jn[nonzero[a]];
-          for(std::size_t b = 0; b <= a; ++b)
-            H(nonzero[a], nonzero[b]) += wa * Jn[nonzero[b]];
-        }
-    }
-    H.template triangularView<Eigen::Upper>() = H.transpose();
+    const Normal_equation_sums zero{Eigen::MatrixXd::Zero(n, n), Eigen::VectorXd::Zero(n), 0.};
+    Normal_equation_sums sums = m_blocks.sum_over_blocks(active.size(), zero, [&](std::size_t first, std::size_t last) {
+      Normal_equation_sums block = zero;
+      Eigen::VectorXd Jn(n);
+      std::vector<Eigen::Index> nonzero;
+      typename Model::Jacobian L;
+      for(std::size_t k = first; k < last; ++k)
+      {
+        const Point_3 x = m_model.point_and_jacobian(corr.u[k], L);
+        const double r = corr.normal[k].dot(m_points[active[k]] - Eigen::Vector3d(x.x(), x.y(), x.z()));
+        const double w = system.w[k] = corr.loss.weight(corr.distance[k]);
+        Jn.noalias() = L.transpose() * corr.normal[k];
+        block.g.noalias() += (w * r) * Jn;
+        block.energy += 0.5 * w * r * r;
+        // A point of a blended model depends on the few components and blends
+        // that reach it: the outer product only over its nonzero entries.
+        nonzero.clear();
+        for(Eigen::Index i = 0; i < n; ++i)
+          if(Jn[i] != 0.)
+            nonzero.push_back(i);
+        if(2 * Eigen::Index(nonzero.size()) > n)
+          block.H.template selfadjointView<Eigen::Lower>().rankUpdate(Jn, w);
+        else
+          for(std::size_t a = 0; a < nonzero.size(); ++a)
+          {
+            const double wa = w * Jn[nonzero[a]];
+            for(std::size_t b = 0; b <= a; ++b)
+              block.H(nonzero[a], nonzero[b]) += wa * Jn[nonzero[b]];
+          }
+      }
+      return block;
+    });
+    system.H = std::move(sums.H);
+    system.g = std::move(sums.g);
+    system.energy = sums.energy;
+    system.H.template triangularView<Eigen::Upper>() = system.H.transpose();
     return system;
   }
 
@@ -625,15 +681,19 @@ private:
     m_start_points.resize(active.size());
     m_start_jacobians.resize(active.size());
     m_start_valid.assign(active.size(), false);
-    for(std::size_t k = 0; k < active.size(); ++k)
-    {
-      Chart_point cu;
-      const Chart_point& u = corr.u[k];
-      m_start_valid[k] = trial.canonical_surface_point(u, cu) && cu.chart == u.chart && cu.x == u.x && cu.y == u.y;
-      const Point_3 x = m_start_valid[k] ? trial.point_and_chart_jacobian(u, m_start_jacobians[k]) : trial.point(u);
-      m_start_points[k] = Eigen::Vector3d(x.x(), x.y(), x.z());
-      E1 += 0.5 * trials.system.w[k] * CGAL::square(corr.normal[k].dot(m_points[active[k]] - m_start_points[k]));
-    }
+    E1 += m_blocks.sum_over_blocks(active.size(), 0., [&](std::size_t first, std::size_t last) {
+      double e = 0.;
+      for(std::size_t k = first; k < last; ++k)
+      {
+        Chart_point cu;
+        const Chart_point& u = corr.u[k];
+        m_start_valid[k] = trial.canonical_surface_point(u, cu) && cu.chart == u.chart && cu.x == u.x && cu.y == u.y;
+        const Point_3 x = m_start_valid[k] ? trial.point_and_chart_jacobian(u, m_start_jacobians[k]) : trial.point(u);
+        m_start_points[k] = Eigen::Vector3d(x.x(), x.y(), x.z());
+        e += 0.5 * trials.system.w[k] * CGAL::square(corr.normal[k].dot(m_points[active[k]] - m_start_points[k]));
+      }
+      return e;
+    });
     const double E0 = trials.system.energy;
     if(!(E1 <= E0))
       return false;
@@ -835,12 +895,13 @@ private:
     // energy tolerance can see); the foot points themselves to ~1e-6 of the distance.
     const double tolerance = 1e-12;
     const double spacing2 = 1. / CGAL::square(double(m_settings.mesh_resolution)); // squared chart distance
-    Located_point<Geom_traits> loc;
-    for(std::size_t k = 0; k < active.size(); ++k)
-    {
+    // The tree is rebuilt here, before the parallel sweep, which only reads it.
+    const Closest_point_locator<Geom_traits>& search = locator();
+    m_blocks.for_each_point(active.size(), [&](std::size_t k) {
       const Eigen::Vector3d& p = m_points[active[k]];
       const Point_3 query(p[0], p[1], p[2]);
       internal::Foot_point foot;
+      Located_point<Geom_traits> loc;
       if(previous != nullptr && model.is_on_surface(previous->u[k]))
       {
         foot = (evaluated && m_start_valid[k])
@@ -851,9 +912,9 @@ private:
         // (in the same chart) leads back to the same foot point: only one
         // farther away can lead to another one.
         if(search_everywhere)
-          loc = locator().locate(query);
+          loc = search.locate(query);
         if(search_everywhere ||
-           (locator().locate_closer_than(query, Point_3(foot.x[0], foot.x[1], foot.x[2]), loc) &&
+           (search.locate_closer_than(query, Point_3(foot.x[0], foot.x[1], foot.x[2]), loc) &&
             !(loc.chart_point.chart == foot.u.chart &&
               CGAL::square(loc.chart_point.x - foot.u.x) + CGAL::square(loc.chart_point.y - foot.u.y) <= spacing2)))
         {
@@ -864,13 +925,13 @@ private:
         }
       }
       else // no previous foot point, or it left the surface of a blended model
-        foot = internal::refine_foot_point(model, p, projection_start(locator().locate(query), model), iterations,
+        foot = internal::refine_foot_point(model, p, projection_start(search.locate(query), model), iterations,
                                            tolerance);
       c.u[k] = foot.u;
       const Vector_3 nv = model.normal(foot.u);
       c.normal[k] = Eigen::Vector3d(nv.x(), nv.y(), nv.z());
       c.distance[k] = std::sqrt(foot.squared_distance);
-    }
+    });
     // The strays' volume: the ball of the points' diameter D (rotation-invariant,
     // unlike their box). The noise is taken to be at most 2 % of D.
     c.loss = Robust_loss::estimate(m_settings.robust_weighting, c.distance, surface_area(),
@@ -943,6 +1004,7 @@ private:
 
   Model m_model;
   Fitting_settings m_settings;
+  internal::Point_blocks m_blocks; // runs the per-point loops of the sweeps and the assembly
   std::vector<Eigen::Vector3d> m_points;
   double m_diagonal = 0.;  // of the bounding box: for the metrics
   double m_diameter = 0.;  // about the centroid: the rotation-invariant length scale
@@ -952,7 +1014,7 @@ private:
   bool m_tree_outdated = false; // the meshes moved since the locator's tree was built
   std::vector<Eigen::Vector3d> m_start_points;                     // see attach()
   std::vector<typename Model::Chart_jacobian> m_start_jacobians;  // see attach()
-  std::vector<bool> m_start_valid;                                 // see attach()
+  std::vector<unsigned char> m_start_valid; // see attach(); not vector<bool>: written by several threads
   std::vector<std::size_t> m_all, m_subset;
   bool m_use_all = true;
   std::vector<bool> m_active_parameters;

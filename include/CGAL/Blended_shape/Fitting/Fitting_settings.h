@@ -55,7 +55,15 @@ struct Fitting_settings
   std::size_t maximum_iterations = 100;
   double energy_tolerance = 1e-10;        ///< relative energy decrease of one step
   double force_tolerance = 1e-6;          ///< largest scaled parameter force, see Step_report::scaled_force
-  std::size_t steady_iterations = 2;      ///< consecutive steps under both tolerances
+  std::size_t steady_iterations = 2;      ///< consecutive steps at rest that end a phase
+  /// A model that cannot represent the data (one superquadric for a mug)
+  /// comes to rest with data forces that balance but do not vanish, while its
+  /// closest points keep creeping: the energy then drops by a tiny fraction
+  /// per step for hundreds of steps. That is a rest state too (it is where
+  /// the split decision of sec. 5.4 acts): a step that lowers the energy by
+  /// at most this fraction counts as at rest whatever the forces. 0: only
+  /// vanishing forces (`energy_tolerance` and `force_tolerance`) are a rest state.
+  double rest_tolerance = 1e-4;
   int mesh_resolution = 10;               ///< chart tessellation (rings from pole to equator)
   int projection_iterations = 20;         ///< at most this many Gauss-Newton steps from a start to the closest point on the surface
   std::size_t subset_size = 4000;         ///< points used before the all-points phase (0: all from the start)
@@ -81,6 +89,10 @@ struct Fitting_settings
   double placement_stiffness = 0.01;
   /// Seconds (named parameter `CGAL::parameters::maximum_running_time`).
   double maximum_running_time = HUGE_VAL;
+  /// Threads of the closest-point sweeps and of the assembly of the normal
+  /// equations (with TBB; without, the fit runs on one core): 0 for all
+  /// cores. The results are bit-identical whatever the number.
+  std::size_t number_of_threads = 0;
 };
 
 /*!
@@ -105,7 +117,9 @@ Fitting_settings settings_from_named_parameters(const NamedParameters& np = CGAL
   // the package's, one per member of the same name (internal/parameter_names.h)
 #define CGAL_BLENDED_SHAPE_PARAMETER(NAME)
 #define CGAL_BLENDED_SHAPE_FITTING_SETTING(NAME) s.NAME = choose_parameter(get_parameter(np, internal_np::NAME), s.NAME);
+#ifndef DOXYGEN_RUNNING // the manual leaves internal/ out: Doxygen would not find the list
 #include <CGAL/Blended_shape/internal/parameter_names.h>
+#endif
 #undef CGAL_BLENDED_SHAPE_FITTING_SETTING
 #undef CGAL_BLENDED_SHAPE_PARAMETER
   return s;

@@ -9,6 +9,7 @@
 #include <CGAL/Blended_shape/Fitting/Fit_metrics.h>
 #include <CGAL/Blended_shape/Primitives/Superquadric_ellipsoid.h>
 #include <CGAL/Blended_shape/Fitting/initialize_from_moments.h>
+#include <CGAL/Blended_shape/Fitting/internal/Point_normalization.h>
 #include <CGAL/Blended_shape/internal/point_range_types.h>
 #include <CGAL/Blended_shape/parameters.h>
 
@@ -16,6 +17,7 @@
 #include <CGAL/Kernel_traits.h>
 #include <CGAL/Named_function_parameters.h>
 #include <CGAL/boost/graph/named_params_helper.h>
+#include <CGAL/property_map.h>
 
 #include <chrono>
 #include <functional>
@@ -108,10 +110,18 @@ closest start (Superquadric_multistart_search), the physics-based fit of
 Deformable_model_fitter until steady state, the search for a closer fit
 from similar superquadrics, then the metrics.
 
+The fit works on a normalized copy of the points, centred at the origin
+at about unit size (the centre of their bounding box subtracted, then divided
+by a power of two near its size: exactly), and the result is mapped back: so
+the fit is the same, relatively, whatever the unit of the points and however
+far from the origin they are (coordinates up to `maximum_coordinate_magnitude`),
+and the bounds of the fit (the smallest semi-axis, `maximum_size_factor`) are
+relative to the data.
+
 (The evolution of a blended shape by splits and holes, sec. 5.4, is not
 done here: the model is always one superquadric.)
 
-\param points the input points (at least `minimum_number_of_points`, finite, not all identical)
+\param points the input points (at least `minimum_number_of_points`, finite, not all identical; see check_points())
 \param np optional named parameters.
   The settings of the fit: every member of Fitting_settings, read by
   settings_from_named_parameters() (meanings and defaults there).
@@ -130,7 +140,8 @@ done here: the model is always one superquadric.)
   `reference_mesh` (a pointer to a `CGAL::Surface_mesh<Point_3>`: then the
   symmetric Chamfer distance to it is reported).
 
-\throws Input_error if the points are unusable; std::invalid_argument on invalid parameters.
+\throws Input_error if the points are unusable (check_points(), before any fitting: e.g. `Scale_out_of_range`
+        for coordinates whose squares overflow); std::invalid_argument on invalid parameters.
 */
 template <class PointRange, class NamedParameters = CGAL::parameters::Default_named_parameters>
 auto fit_superquadric(const PointRange& points, const NamedParameters& np = CGAL::parameters::default_values())
@@ -151,16 +162,20 @@ auto fit_superquadric(const PointRange& points, const NamedParameters& np = CGAL
   const bool all_axes = choose_parameter(get_parameter(np, internal_np::try_all_axes), true);
   const auto start = std::chrono::steady_clock::now();
 
+  // The fit sees the points centred at unit size (checked first), the result is taken back.
+  typedef typename Geom_traits::Point_3 Point_3;
+  typedef CGAL::Identity_property_map<Point_3> Normalized_point_map;
+  const internal::Point_normalization<Geom_traits> normalization(points, point_map);
+  const std::vector<Point_3> normalized = normalization.normalized_points(points, point_map);
   // Strays ruin the moments (sec. 5.3's initialization) when many are far away.
-  const auto initial = s.robust_weighting == Robust_weighting::None
-                         ? initialize_from_moments(points, CGAL::parameters::point_map(point_map))
-                         : initialize_from_trimmed_moments(points, CGAL::parameters::point_map(point_map));
-  typedef Superquadric_multistart_search<Geom_traits, PointRange, typename Types::Point_map> Search;
+  const auto initial = s.robust_weighting == Robust_weighting::None ? initialize_from_moments(normalized)
+                                                                    : initialize_from_trimmed_moments(normalized);
+  typedef Superquadric_multistart_search<Geom_traits, std::vector<Point_3>, Normalized_point_map> Search;
   typedef typename Search::Model Model;
   typedef typename Search::Fitter Fitter;
-  Search search(points, point_map, s);
+  Search search(normalized, Normalized_point_map(), s);
   const Model start_model = all_axes ? search.best_start(initial, visitor, callback) : make_initial_model(initial, 2);
-  std::unique_ptr<Fitter> fitter = std::make_unique<Fitter>(points, start_model, s, point_map);
+  std::unique_ptr<Fitter> fitter = std::make_unique<Fitter>(normalized, start_model, s);
   Fitting_status final_status = search.last_candidate_status();
   if(!search.aborted())
     final_status = fitter->run(visitor, callback);
@@ -169,10 +184,13 @@ auto fit_superquadric(const PointRange& points, const NamedParameters& np = CGAL
   final_status.iterations += search.candidate_iterations();
   final_status.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 
-  Fit_result<Geom_traits> result{fitter->model(), initial, Fit_metrics(), {}, fitter->chart_meshes()};
-  result.metrics = compute_fit_metrics(*fitter, initial, final_status, &result.stray_points);
+  std::vector<std::size_t> stray_points;
+  Fit_metrics metrics = compute_fit_metrics(*fitter, initial, final_status, &stray_points);
   if(reference != nullptr)
-    result.metrics.chamfer_distance = symmetric_chamfer_distance(result.meshes, *reference);
+    metrics.chamfer_distance = symmetric_chamfer_distance(fitter->chart_meshes(), normalization.to_normalized_mesh(*reference));
+  const Model model = normalization.model_from_normalized(fitter->model());
+  Fit_result<Geom_traits> result{model, normalization.from_normalized(initial), normalization.from_normalized(metrics),
+                                 std::move(stray_points), normalization.positioned_meshes(fitter->chart_meshes(), model)};
   return result;
 }
 

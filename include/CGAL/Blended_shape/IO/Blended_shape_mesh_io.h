@@ -21,6 +21,7 @@
 #include <stdexcept>
 #include <string>
 #include <system_error>
+#include <utility>
 
 namespace CGAL {
 namespace Blended_shapes {
@@ -41,6 +42,15 @@ void check_finite_mesh(const CGAL::Surface_mesh<Point>& mesh, const char* where)
       throw std::invalid_argument(std::string(where) + ": vertex " + std::to_string(std::size_t(v)) +
                                   " has a non-finite coordinate; the mesh was not written");
   }
+}
+
+// The `stream_precision` named parameter: 17 digits by default, which read
+// back the same doubles.
+template <class NamedParameters>
+int stream_precision(const NamedParameters& np)
+{
+  return CGAL::parameters::choose_parameter(CGAL::parameters::get_parameter(np, CGAL::internal_np::stream_precision),
+                                            17);
 }
 
 // write_file_atomically() with the name of the public function in front of
@@ -69,6 +79,15 @@ void write_mesh_file(const std::string& path, const char* where, Writer&& write)
   {
     throw std::runtime_error(std::string(where) + ": " + e.what());
   }
+}
+
+// A mesh with finite coordinates only, written atomically.
+template <class Point, class Writer>
+void write_finite_mesh_file(const std::string& path, const char* where, const CGAL::Surface_mesh<Point>& mesh,
+                            Writer&& write)
+{
+  check_finite_mesh(mesh, where);
+  write_mesh_file(path, where, std::forward<Writer>(write));
 }
 
 } // namespace internal
@@ -114,21 +133,19 @@ template <class GeomTraits, class NamedParameters = CGAL::parameters::Default_na
 void write_blended_shape_pieces_ply(const std::string& path, const Blended_shape_pieces<GeomTraits>& pieces,
                                     const NamedParameters& np = CGAL::parameters::default_values())
 {
-  using CGAL::parameters::choose_parameter;
-  using CGAL::parameters::get_parameter;
   const char* where = "write_blended_shape_pieces_ply";
-  const bool binary = choose_parameter(get_parameter(np, CGAL::internal_np::use_binary_mode), true);
-  const int precision = choose_parameter(get_parameter(np, CGAL::internal_np::stream_precision), 17);
+  const bool binary = CGAL::parameters::choose_parameter(
+    CGAL::parameters::get_parameter(np, CGAL::internal_np::use_binary_mode), true);
+  const int precision = internal::stream_precision(np);
 
   const auto mesh = pieces.merged_mesh();
-  internal::check_finite_mesh(mesh, where);
   std::size_t components = 0;
   for(const auto& p : pieces.pieces())
     components = std::max(components, p.component + 1);
   const std::string comment = "Blended_shape pieces: " + std::to_string(pieces.pieces().size()) +
                               " chart pieces of " + std::to_string(components) +
                               " components; faces colored by component, property component = its index";
-  internal::write_mesh_file(path, where, [&](std::ostream& out) {
+  internal::write_finite_mesh_file(path, where, mesh, [&](std::ostream& out) {
     CGAL::IO::set_mode(out, binary ? CGAL::IO::BINARY : CGAL::IO::ASCII);
     if(!CGAL::IO::write_PLY(out, mesh, comment, CGAL::parameters::stream_precision(precision)))
       throw std::runtime_error("CGAL::IO::write_PLY failed to write '" + path + "'; nothing was written");
@@ -153,22 +170,17 @@ file is replaced only by a complete one.
 \param np optional named parameters among
   `CGAL::parameters::stream_precision(int)` (default 17).
 
-\throws std::invalid_argument on an empty path or if a vertex has a
-        non-finite coordinate (nothing is written)
-\throws std::runtime_error if the file cannot be created (a missing or
-        read-only directory, `path` is a directory), written or renamed (the
-        message names the file and says what to check); no file is left
+\throws std::invalid_argument or std::runtime_error in the cases of
+        write_blended_shape_pieces_ply(): an empty path or a non-finite
+        vertex coordinate, or a file that cannot be created, written or
+        renamed; no file is left
 */
 template <class Point, class NamedParameters = CGAL::parameters::Default_named_parameters>
 void write_unified_mesh_off(const std::string& path, const CGAL::Surface_mesh<Point>& mesh,
                             const NamedParameters& np = CGAL::parameters::default_values())
 {
-  using CGAL::parameters::choose_parameter;
-  using CGAL::parameters::get_parameter;
-  const char* where = "write_unified_mesh_off";
-  const int precision = choose_parameter(get_parameter(np, CGAL::internal_np::stream_precision), 17);
-  internal::check_finite_mesh(mesh, where);
-  internal::write_mesh_file(path, where, [&](std::ostream& out) {
+  const int precision = internal::stream_precision(np);
+  internal::write_finite_mesh_file(path, "write_unified_mesh_off", mesh, [&](std::ostream& out) {
     CGAL::IO::set_mode(out, CGAL::IO::ASCII);
     if(!CGAL::IO::write_OFF(out, mesh, CGAL::parameters::stream_precision(precision)))
       throw std::runtime_error("CGAL::IO::write_OFF failed to write '" + path + "'; nothing was written");

@@ -35,7 +35,10 @@ public:
     No_points,            ///< no points (or, for a mesh, no faces)
     Too_few_points,       ///< fewer than `minimum_number_of_points` points
     Non_finite_point,     ///< a NaN or infinite coordinate where it cannot be dropped
-    All_points_identical  ///< every point has exactly the same coordinates
+    All_points_identical, ///< every point has exactly the same coordinates
+    /// A coordinate beyond `maximum_coordinate_magnitude`, or a point set whose
+    /// extent is under `minimum_point_set_extent`: squared distances would overflow or underflow
+    Scale_out_of_range
   };
 
   /// An error of kind `c` with the message `message` (returned by `what()`).
@@ -59,6 +62,7 @@ public:
     case Too_few_points: return "too_few_points";
     case Non_finite_point: return "non_finite_point";
     case All_points_identical: return "all_points_identical";
+    case Scale_out_of_range: return "scale_out_of_range";
     }
     return "unknown";
   }
@@ -74,6 +78,23 @@ The smallest point set the package accepts: below this, neither the
 initialization nor the fit of a primitive is meaningful.
 */
 constexpr std::size_t minimum_number_of_points = 10;
+
+/*!
+\ingroup PkgBlendedShapeIO
+
+The largest coordinate magnitude the package accepts: the initialization and
+the fit sum squared coordinates and distances, which must stay finite in
+double precision (the square of `1e150` is `1e300`, with room for the sums).
+*/
+constexpr double maximum_coordinate_magnitude = 1e150;
+
+/*!
+\ingroup PkgBlendedShapeIO
+
+The smallest extent (the largest side of the bounding box) of a point set
+the package accepts: under it, squared distances underflow in double precision.
+*/
+constexpr double minimum_point_set_extent = 1e-150;
 
 } // namespace Blended_shapes
 } // namespace CGAL

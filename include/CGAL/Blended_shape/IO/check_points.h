@@ -9,6 +9,7 @@
 
 #include <boost/range/value_type.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <cstddef>
 #include <iterator>
@@ -82,7 +83,9 @@ void check_count_and_spread(const PointRange& points, PointMap point_map,
 
 Checks that a point set can be given to the initialization and the fit:
 it is not empty, has at least `minimum_number_of_points` points, every
-coordinate is finite, and not all points are identical.
+coordinate is finite and at most `maximum_coordinate_magnitude` in absolute
+value, not all points are identical, and their extent (the largest side of
+their bounding box) is at least `minimum_point_set_extent`.
 
 Unlike `read_points()`, which drops non-finite points read from a file, an
 in-memory range is rejected as a whole: silently skipping elements would
@@ -95,23 +98,51 @@ Collinear or coplanar point sets pass: the initialization reports those.
         type of `PointRange` and whose value type is a `Point_3` of a CGAL kernel.
 
 \throws Input_error with code `No_points`, `Non_finite_point` (the message
-        gives the index of the first bad point), `Too_few_points` or
-        `All_points_identical`, checked in this order.
+        gives the index of the first bad point), `Scale_out_of_range` for a
+        too large coordinate (the same), `Too_few_points`,
+        `All_points_identical` or `Scale_out_of_range` for a too small extent,
+        checked in this order.
 */
 template <class PointRange, class PointMap>
 void check_points(const PointRange& points, PointMap point_map)
 {
   std::size_t i = 0;
+  double low[3] = {HUGE_VAL, HUGE_VAL, HUGE_VAL}, high[3] = {-HUGE_VAL, -HUGE_VAL, -HUGE_VAL};
   for(auto it = std::begin(points); it != std::end(points); ++it, ++i)
   {
-    if(!internal::is_finite_point(get(point_map, *it)))
+    const auto& p = get(point_map, *it);
+    if(!internal::is_finite_point(p))
       throw Input_error(Input_error::Non_finite_point,
                         "check_points: point " + std::to_string(i) + " (counting from 0) has a "
-                        "non-finite coordinate (" + internal::point_to_string(get(point_map, *it)) +
+                        "non-finite coordinate (" + internal::point_to_string(p) +
                         "); remove or repair points with NaN or infinite coordinates before "
                         "the fit (read_points() drops them when reading a file)");
+    const double x[3] = {CGAL::to_double(p.x()), CGAL::to_double(p.y()), CGAL::to_double(p.z())};
+    for(int k = 0; k < 3; ++k)
+    {
+      if(std::abs(x[k]) > maximum_coordinate_magnitude)
+      {
+        std::ostringstream s;
+        s << "check_points: point " << i << " (counting from 0) has a coordinate beyond " << maximum_coordinate_magnitude
+          << " in absolute value (" << internal::point_to_string(p) << "), whose square overflows double "
+             "precision; express the points in a larger unit (or translate them nearer the origin) so that every "
+             "coordinate is at most " << maximum_coordinate_magnitude;
+        throw Input_error(Input_error::Scale_out_of_range, s.str());
+      }
+      low[k] = (std::min)(low[k], x[k]);
+      high[k] = (std::max)(high[k], x[k]);
+    }
   }
   internal::check_count_and_spread(points, point_map, "check_points: the point range", "");
+  const double extent = (std::max)({high[0] - low[0], high[1] - low[1], high[2] - low[2]});
+  if(extent < minimum_point_set_extent)
+  {
+    std::ostringstream s;
+    s << "check_points: the points span only " << extent << " (the largest side of their bounding box), under "
+      << minimum_point_set_extent << ", whose square underflows double precision; express the points in a smaller "
+         "unit so that they span at least " << minimum_point_set_extent;
+    throw Input_error(Input_error::Scale_out_of_range, s.str());
+  }
 }
 
 /*!

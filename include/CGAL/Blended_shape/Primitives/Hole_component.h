@@ -4,6 +4,8 @@
 
 #include <CGAL/Blended_shape/Primitives/Chart_domain.h>
 #include <CGAL/Blended_shape/Primitives/Superquadric_toroid.h>
+#include <CGAL/Blended_shape/Primitives/internal/Primitive_parameters.h>
+#include <CGAL/Blended_shape/Primitives/internal/superquadric_parameters.h>
 #include <CGAL/Blended_shape/internal/Parameter_table.h>
 
 #include <Eigen/Core>
@@ -101,22 +103,24 @@ loops) and one on the middle circle `r = 0`.
 
 Parameters `(a1, a2, a3, a4, a5, e1, e2)` with the bounds of
 Superquadric_toroid (`a1, a2, a3 > 0`, `a4, a5 >= 1`, `ei` in [0.01, 2]); the
-defaults are the toroid's except `a4 = a5 = 1`: a hole starts closed.
+defaults are the toroid's except `a4 = a5 = 1`: a hole starts closed. The
+parameter queries of the concept (`parameter_info()` and the others) give these.
 
 \tparam GeomTraits a CGAL kernel whose `FT` is `double`.
 
 \cgalModels{BlendedShapePrimitive (in both domains; the Two_disks domain only while the hole is closed)}
 */
 template <class GeomTraits>
-class Hole_component
+class Hole_component : public internal::Parameter_queries<7, internal::toroid_parameters<true>>
 {
 public:
-  typedef GeomTraits Geom_traits;                  ///< the kernel
-  typedef typename Geom_traits::FT FT;             ///< the number type of the kernel
-  typedef typename Geom_traits::Point_3 Point_3;   ///< the point type
-  typedef typename Geom_traits::Vector_3 Vector_3; ///< the vector type (normals)
-  /// The toroid whose inner half the component is, with the same parameters.
+  /// The toroid whose inner half the component is, with the same parameters;
+  /// the component's types are the toroid's.
   typedef Superquadric_toroid<GeomTraits> Toroid;
+  typedef typename Toroid::Geom_traits Geom_traits; ///< the kernel
+  typedef typename Toroid::FT FT;                   ///< the number type of the kernel
+  typedef typename Toroid::Point_3 Point_3;         ///< the point type
+  typedef typename Toroid::Vector_3 Vector_3;       ///< the vector type (normals)
 
   /// The dimension of the parameter vector: the toroid's, 7.
   static constexpr int number_of_parameters = Toroid::number_of_parameters;
@@ -158,18 +162,6 @@ public:
   /// \name Parameters
   /// @{
 
-  /// Name, bounds, default value and kind of parameter `i` (the toroid's,
-  /// except the default 1 of `a4` and `a5`).
-  static const Parameter_info& parameter_info(int i) { return table()[std::size_t(i)]; }
-  /// The name of parameter `i` ("a1", ...).
-  static const char* parameter_name(int i) { return parameter_info(i).name; }
-  /// The smallest allowed value of parameter `i`.
-  static double parameter_lower_bound(int i) { return parameter_info(i).lower_bound; }
-  /// The largest allowed value of parameter `i`.
-  static double parameter_upper_bound(int i) { return parameter_info(i).upper_bound; }
-  /// The default value of parameter `i`.
-  static double parameter_default_value(int i) { return parameter_info(i).default_value; }
-
   /// The current parameters.
   const Parameter_vector& parameters() const { return m_toroid.parameters(); }
 
@@ -179,7 +171,8 @@ public:
   ///         the component is then unchanged.
   void set_parameters(const Parameter_vector& q)
   {
-    internal::validate_parameters<number_of_parameters>("Hole_component", table(), q);
+    const internal::Parameter_table<number_of_parameters>& table = internal::toroid_parameters<true>();
+    internal::validate_parameters<number_of_parameters>(table.owner, table.info, q);
     m_toroid.set_parameters(q);
   }
 
@@ -378,20 +371,6 @@ public:
   /// @}
 
 private:
-  // The toroid's parameter table, the hole starting closed.
-  static const std::array<Parameter_info, number_of_parameters>& table()
-  {
-    static const std::array<Parameter_info, number_of_parameters> t = [] {
-      std::array<Parameter_info, number_of_parameters> a;
-      for(int i = 0; i < number_of_parameters; ++i)
-        a[std::size_t(i)] = Toroid::parameter_info(i);
-      a[std::size_t(A4)].default_value = 1.;
-      a[std::size_t(A5)].default_value = 1.;
-      return a;
-    }();
-    return t;
-  }
-
   Toroid m_toroid;
   Hole_domain m_domain;
 };

@@ -5,6 +5,7 @@
 #include <CGAL/Blended_shape/Primitives/Chart_domain.h>
 #include <CGAL/Blended_shape/internal/Parameter_table.h>
 #include <CGAL/Blended_shape/Primitives/internal/signed_power.h>
+#include <CGAL/Blended_shape/Primitives/internal/superquadric_parameters.h>
 
 #include <Eigen/Core>
 
@@ -43,28 +44,21 @@ exact), and the identification of their points is explicit: to_chart() and
 canonical_chart_point().
 
 Parameters: `(a1, a2, a3, e1, e2)`; `ai > 0` and `ei` in [0.01, 2] (the
-closed-form normal needs `e <= 2`).
+closed-form normal needs `e <= 2`). The parameter queries, `parameters()`
+and `set_parameters()` are those of the concept, with these names and bounds.
 
 \tparam GeomTraits a CGAL kernel whose `FT` is `double`.
 
 \cgalModels{BlendedShapePrimitive}
 */
 template <class GeomTraits>
-class Superquadric_ellipsoid
+class Superquadric_ellipsoid : public internal::Checked_parameters<5, internal::superquadric_ellipsoid_parameters>
 {
 public:
   typedef GeomTraits Geom_traits;                  ///< the kernel
   typedef typename Geom_traits::FT FT;             ///< the number type of the kernel
   typedef typename Geom_traits::Point_3 Point_3;   ///< the point type
   typedef typename Geom_traits::Vector_3 Vector_3; ///< the vector type (normals)
-
-  static constexpr int number_of_parameters = 5;   ///< the dimension of the parameter vector
-  /// The parameter vector (see Parameter_index for the order).
-  typedef Eigen::Matrix<double, number_of_parameters, 1> Parameter_vector;
-  /// The parameter Jacobian ds/dq at one chart point (3 x 5).
-  typedef Eigen::Matrix<double, 3, number_of_parameters> Jacobian;
-  /// The chart Jacobian [ds/dx, ds/dy] at one chart point (3 x 2).
-  typedef Eigen::Matrix<double, 3, 2> Chart_jacobian;
 
   /// Indices into the parameter vector.
   enum Parameter_index { A1 = 0, A2, A3, E1, E2 };
@@ -91,31 +85,6 @@ public:
     q << a1, a2, a3, e1, e2;
     set_parameters(q);
   }
-
-  /// \name Parameters
-  /// @{
-
-  /// Name, bounds, default value and kind of parameter `i`.
-  static const Parameter_info& parameter_info(int i) { return table()[std::size_t(i)]; }
-  /// The name of parameter `i` ("a1", ...).
-  static const char* parameter_name(int i) { return parameter_info(i).name; }
-  /// The smallest allowed value of parameter `i`.
-  static double parameter_lower_bound(int i) { return parameter_info(i).lower_bound; }
-  /// The largest allowed value of parameter `i`.
-  static double parameter_upper_bound(int i) { return parameter_info(i).upper_bound; }
-  /// The default value of parameter `i`.
-  static double parameter_default_value(int i) { return parameter_info(i).default_value; }
-
-  /// The current parameters.
-  const Parameter_vector& parameters() const { return m_q; }
-
-  /// \throws std::invalid_argument if a value is not finite or out of bounds.
-  void set_parameters(const Parameter_vector& q)
-  {
-    internal::validate_parameters<number_of_parameters>("Superquadric_ellipsoid", table(), q);
-    m_q = q;
-  }
-  /// @}
 
   /// \name Charts
   /// @{
@@ -306,18 +275,6 @@ public:
   /// @}
 
 private:
-  static const std::array<Parameter_info, number_of_parameters>& table()
-  {
-    static const std::array<Parameter_info, number_of_parameters> t = {{
-      {"a1", 1e-9, HUGE_VAL, 1., Parameter_kind::Length},
-      {"a2", 1e-9, HUGE_VAL, 1., Parameter_kind::Length},
-      {"a3", 1e-9, HUGE_VAL, 1., Parameter_kind::Length},
-      {"e1", 0.01, 2., 1., Parameter_kind::Dimensionless},
-      {"e2", 0.01, 2., 1., Parameter_kind::Dimensionless}}};
-    return t;
-  }
-
-  Parameter_vector m_q;
   double m_margin;
 };
 

@@ -5,6 +5,7 @@
 #include <CGAL/Blended_shape/Primitives/Chart_domain.h>
 #include <CGAL/Blended_shape/internal/Parameter_table.h>
 #include <CGAL/Blended_shape/Primitives/internal/signed_power.h>
+#include <CGAL/Blended_shape/Primitives/internal/superquadric_parameters.h>
 
 #include <Eigen/Core>
 
@@ -30,28 +31,21 @@ so that counterclockwise chart triangles give the outward normal.
 
 Parameters `(a1, a2, a3, a4, a5, e1, e2)`: `a1, a2, a3 > 0`, `a4, a5 >= 1`
 (at 1 the inner wall reaches the axis: the pinched shape of the hole blend,
-sec. 4.2), `ei` in [0.01, 2].
+sec. 4.2), `ei` in [0.01, 2]. The parameter queries, `parameters()` and
+`set_parameters()` are those of the concept, with these names and bounds.
 
 \tparam GeomTraits a CGAL kernel whose `FT` is `double`.
 
 \cgalModels{BlendedShapePrimitive}
 */
 template <class GeomTraits>
-class Superquadric_toroid
+class Superquadric_toroid : public internal::Checked_parameters<7, internal::toroid_parameters<false>>
 {
 public:
   typedef GeomTraits Geom_traits;                  ///< the kernel
   typedef typename Geom_traits::FT FT;             ///< the number type of the kernel
   typedef typename Geom_traits::Point_3 Point_3;   ///< the point type
   typedef typename Geom_traits::Vector_3 Vector_3; ///< the vector type (normals)
-
-  static constexpr int number_of_parameters = 7;   ///< the dimension of the parameter vector
-  /// The parameter vector (see Parameter_index for the order).
-  typedef Eigen::Matrix<double, number_of_parameters, 1> Parameter_vector;
-  /// The parameter Jacobian ds/dq at one chart point (3 x 7).
-  typedef Eigen::Matrix<double, 3, number_of_parameters> Jacobian;
-  /// The chart Jacobian [ds/dx, ds/dy] = [ds/dv, ds/du] at one chart point (3 x 2).
-  typedef Eigen::Matrix<double, 3, 2> Chart_jacobian;
 
   /// Indices into the parameter vector.
   enum Parameter_index { A1 = 0, A2, A3, A4, A5, E1, E2 };
@@ -65,31 +59,6 @@ public:
     q << a1, a2, a3, a4, a5, e1, e2;
     set_parameters(q);
   }
-
-  /// \name Parameters
-  /// @{
-
-  /// Name, bounds, default value and kind of parameter `i`.
-  static const Parameter_info& parameter_info(int i) { return table()[std::size_t(i)]; }
-  /// The name of parameter `i` ("a1", ...).
-  static const char* parameter_name(int i) { return parameter_info(i).name; }
-  /// The smallest allowed value of parameter `i`.
-  static double parameter_lower_bound(int i) { return parameter_info(i).lower_bound; }
-  /// The largest allowed value of parameter `i`.
-  static double parameter_upper_bound(int i) { return parameter_info(i).upper_bound; }
-  /// The default value of parameter `i`.
-  static double parameter_default_value(int i) { return parameter_info(i).default_value; }
-
-  /// The current parameters.
-  const Parameter_vector& parameters() const { return m_q; }
-
-  /// \throws std::invalid_argument if a value is not finite or out of bounds.
-  void set_parameters(const Parameter_vector& q)
-  {
-    internal::validate_parameters<number_of_parameters>("Superquadric_toroid", table(), q);
-    m_q = q;
-  }
-  /// @}
 
   /// \name Charts
   /// @{
@@ -217,21 +186,6 @@ public:
   }
   /// @}
 
-private:
-  static const std::array<Parameter_info, number_of_parameters>& table()
-  {
-    static const std::array<Parameter_info, number_of_parameters> t = {{
-      {"a1", 1e-9, HUGE_VAL, 1., Parameter_kind::Length},
-      {"a2", 1e-9, HUGE_VAL, 1., Parameter_kind::Length},
-      {"a3", 1e-9, HUGE_VAL, 1., Parameter_kind::Length},
-      {"a4", 1., HUGE_VAL, 2., Parameter_kind::Dimensionless},
-      {"a5", 1., HUGE_VAL, 2., Parameter_kind::Dimensionless},
-      {"e1", 0.01, 2., 1., Parameter_kind::Dimensionless},
-      {"e2", 0.01, 2., 1., Parameter_kind::Dimensionless}}};
-    return t;
-  }
-
-  Parameter_vector m_q;
 };
 
 } // namespace Blended_shapes

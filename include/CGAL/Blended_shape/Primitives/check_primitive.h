@@ -5,6 +5,7 @@
 #include <CGAL/Blended_shape/Primitives/Chart_domain.h>
 
 #include <CGAL/number_utils.h>
+#include <CGAL/squared_distance_3.h>
 
 #include <algorithm>
 #include <array>
@@ -15,6 +16,41 @@
 
 namespace CGAL {
 namespace Blended_shapes {
+namespace internal {
+
+// The coordinates of a kernel point, as doubles.
+template <class Point_3>
+std::array<double, 3> coordinates(const Point_3& p)
+{
+  return std::array<double, 3>{{CGAL::to_double(p.x()), CGAL::to_double(p.y()), CGAL::to_double(p.z())}};
+}
+
+// |M_k - fd| / max(|fd|, floor): the error of column k of an analytic
+// Jacobian against its finite difference, relative but floored so that
+// vanishing columns are compared at the scale of the shape.
+template <class Matrix>
+double relative_column_error(const Matrix& M, int k, const double fd[3], double floor)
+{
+  double diff = 0., norm = 0.;
+  for(int r = 0; r < 3; ++r)
+  {
+    diff += (M(r, k) - fd[r]) * (M(r, k) - fd[r]);
+    norm += fd[r] * fd[r];
+  }
+  return std::sqrt(diff) / (std::max)(std::sqrt(norm), floor);
+}
+
+// Whether `err` is a new largest error (a NaN counts as one, and is kept as
+// infinity), kept in `maximum`.
+inline bool raise_maximum(double err, double& maximum)
+{
+  if(err <= maximum)
+    return false;
+  maximum = std::isfinite(err) ? err : HUGE_VAL;
+  return true;
+}
+
+} // namespace internal
 
 /// \ingroup PkgBlendedShapeChecks
 /// A uniformly distributed point of chart `chart` of `primitive`
@@ -72,14 +108,10 @@ Jacobian_check_report check_jacobian(const Primitive& primitive,
 {
   typedef typename Primitive::Parameter_vector Parameter_vector;
   typedef typename Primitive::Jacobian Jacobian;
-  typedef typename Primitive::Point_3 Point_3;
   const int P = Primitive::number_of_parameters;
 
   Jacobian_check_report report;
   const Parameter_vector q0 = primitive.parameters();
-  auto coords = [](const Point_3& p) {
-    return std::array<double, 3>{{CGAL::to_double(p.x()), CGAL::to_double(p.y()), CGAL::to_double(p.z())}};
-  };
   // One perturbed copy per parameter and offset, made once.
   std::vector<std::array<Primitive, 3>> shifted;
   std::vector<std::array<double, 3>> weights; // finite-difference weights / h for offsets
@@ -109,7 +141,7 @@ Jacobian_check_report check_jacobian(const Primitive& primitive,
   Jacobian J;
   for(const Chart_point& u : points)
   {
-    const std::array<double, 3> s = coords(primitive.point_and_jacobian(u, J));
+    const std::array<double, 3> s = internal::coordinates(primitive.point_and_jacobian(u, J));
     ++report.points_checked;
     const double scale = std::sqrt(s[0] * s[0] + s[1] * s[1] + s[2] * s[2]);
     if(!J.allFinite() || !std::isfinite(scale))
@@ -119,20 +151,13 @@ Jacobian_check_report check_jacobian(const Primitive& primitive,
       double fd[3] = {0., 0., 0.};
       for(int k = 0; k < 3; ++k)
       {
-        const std::array<double, 3> sk = coords(shifted[std::size_t(i)][std::size_t(k)].point(u));
+        const std::array<double, 3> sk = internal::coordinates(shifted[std::size_t(i)][std::size_t(k)].point(u));
         for(int r = 0; r < 3; ++r)
           fd[r] += weights[std::size_t(i)][std::size_t(k)] * sk[std::size_t(r)];
       }
-      double diff = 0., norm = 0.;
-      for(int r = 0; r < 3; ++r)
+      const double err = internal::relative_column_error(J, i, fd, 1e-4 * scale + 1e-300);
+      if(internal::raise_maximum(err, report.max_relative_error))
       {
-        diff += (J(r, i) - fd[r]) * (J(r, i) - fd[r]);
-        norm += fd[r] * fd[r];
-      }
-      const double err = std::sqrt(diff) / (std::max)(std::sqrt(norm), 1e-4 * scale + 1e-300);
-      if(!(err <= report.max_relative_error)) // also catches NaN
-      {
-        report.max_relative_error = std::isfinite(err) ? err : HUGE_VAL;
         report.worst_parameter = i;
         report.worst_point = u;
       }
@@ -184,15 +209,11 @@ Chart_jacobian_check_report check_chart_jacobian(const Primitive& primitive,
                                                  double step = 1e-5)
 {
   typedef typename Primitive::Chart_jacobian Chart_jacobian;
-  typedef typename Primitive::Point_3 Point_3;
-  auto coords = [](const Point_3& p) {
-    return std::array<double, 3>{{CGAL::to_double(p.x()), CGAL::to_double(p.y()), CGAL::to_double(p.z())}};
-  };
   Chart_jacobian_check_report report;
   double size = 0.;
   for(const Chart_point& u : points)
   {
-    const std::array<double, 3> s = coords(primitive.point(u));
+    const std::array<double, 3> s = internal::coordinates(primitive.point(u));
     const double n = std::sqrt(s[0] * s[0] + s[1] * s[1] + s[2] * s[2]);
     if(std::isfinite(n))
       size = (std::max)(size, n);
@@ -202,7 +223,7 @@ Chart_jacobian_check_report check_chart_jacobian(const Primitive& primitive,
   Chart_jacobian D;
   for(const Chart_point& u : points)
   {
-    const std::array<double, 3> s = coords(primitive.point_and_chart_jacobian(u, D));
+    const std::array<double, 3> s = internal::coordinates(primitive.point_and_chart_jacobian(u, D));
     ++report.points_checked;
     if(!D.allFinite() || !std::isfinite(s[0] + s[1] + s[2]))
       report.has_non_finite = true;
@@ -227,20 +248,13 @@ Chart_jacobian_check_report check_chart_jacobian(const Primitive& primitive,
       {
         if(w[j] == 0.)
           continue;
-        const std::array<double, 3> sj = coords(primitive.point(at(offsets[j])));
+        const std::array<double, 3> sj = internal::coordinates(primitive.point(at(offsets[j])));
         for(int r = 0; r < 3; ++r)
           fd[r] += w[j] * sj[std::size_t(r)];
       }
-      double diff = 0., norm = 0.;
-      for(int r = 0; r < 3; ++r)
+      const double err = internal::relative_column_error(D, k, fd, floor);
+      if(internal::raise_maximum(err, report.max_relative_error))
       {
-        diff += (D(r, k) - fd[r]) * (D(r, k) - fd[r]);
-        norm += fd[r] * fd[r];
-      }
-      const double err = std::sqrt(diff) / (std::max)(std::sqrt(norm), floor);
-      if(!(err <= report.max_relative_error)) // also catches NaN
-      {
-        report.max_relative_error = std::isfinite(err) ? err : HUGE_VAL;
         report.worst_column = k;
         report.worst_point = u;
       }

@@ -179,6 +179,14 @@ inline void check_segments(const std::string& who, std::size_t segments)
             "; use between 8 and 1024 segments per circle (32 to 48 are usually enough)");
 }
 
+// The checks every CAD object starts with: its lengths, then its segments per circle.
+inline void check_sizes(const std::string& who, std::size_t segments,
+                        std::initializer_list<std::pair<const char*, double>> lengths)
+{
+  check_lengths(who, lengths);
+  check_segments(who, segments);
+}
+
 // The preconditions of the corefinement: a closed solid without self-intersection.
 inline void check_boolean_operand(const CAD_mesh& m, const std::string& who, const char* what)
 {
@@ -247,10 +255,9 @@ struct Box_cylinder_parameters
 inline CAD_mesh make_box_cylinder(const Box_cylinder_parameters& p = Box_cylinder_parameters())
 {
   const std::string who = "make_box_cylinder";
-  internal::check_lengths(who, {{"box length", p.box_length}, {"box width", p.box_width},
-                                {"box height", p.box_height}, {"cylinder radius", p.cylinder_radius},
-                                {"cylinder height", p.cylinder_height}});
-  internal::check_segments(who, p.segments);
+  internal::check_sizes(who, p.segments, {{"box length", p.box_length}, {"box width", p.box_width},
+                              {"box height", p.box_height}, {"cylinder radius", p.cylinder_radius},
+                              {"cylinder height", p.cylinder_height}});
   const double fit = 0.45 * (std::min)(p.box_length, p.box_width);
   internal::require(p.cylinder_radius <= fit, who,
                     "cylinder radius " + internal::to_string_g(p.cylinder_radius) +
@@ -294,12 +301,11 @@ struct Mug_parameters
 inline CAD_mesh make_mug(const Mug_parameters& p = Mug_parameters())
 {
   const std::string who = "make_mug";
-  internal::check_lengths(who, {{"radius", p.radius}, {"height", p.height},
-                                {"wall thickness", p.wall_thickness},
-                                {"bottom thickness", p.bottom_thickness},
-                                {"handle radius", p.handle_radius},
-                                {"handle thickness", p.handle_thickness}});
-  internal::check_segments(who, p.segments);
+  internal::check_sizes(who, p.segments, {{"radius", p.radius}, {"height", p.height},
+                              {"wall thickness", p.wall_thickness},
+                              {"bottom thickness", p.bottom_thickness},
+                              {"handle radius", p.handle_radius},
+                              {"handle thickness", p.handle_thickness}});
   using internal::to_string_g;
   const double R = p.radius, H = p.height, t = p.wall_thickness, b = p.bottom_thickness;
   const double Rh = p.handle_radius, r = p.handle_thickness;
@@ -363,10 +369,9 @@ struct Two_holed_box_parameters
 inline CAD_mesh make_two_holed_box(const Two_holed_box_parameters& p = Two_holed_box_parameters())
 {
   const std::string who = "make_two_holed_box";
-  internal::check_lengths(who, {{"box length", p.box_length}, {"box width", p.box_width},
-                                {"box height", p.box_height}, {"big hole radius", p.big_hole_radius},
-                                {"small hole radius", p.small_hole_radius}});
-  internal::check_segments(who, p.segments);
+  internal::check_sizes(who, p.segments, {{"box length", p.box_length}, {"box width", p.box_width},
+                              {"box height", p.box_height}, {"big hole radius", p.big_hole_radius},
+                              {"small hole radius", p.small_hole_radius}});
   const double fit = 0.9 * (std::min)(0.25 * p.box_length, 0.5 * p.box_width);
   for(const auto& hole : {std::make_pair("big hole radius", p.big_hole_radius),
                           std::make_pair("small hole radius", p.small_hole_radius)})
@@ -413,11 +418,10 @@ struct Box_hole_cylinder_parameters
 inline CAD_mesh make_box_hole_cylinder(const Box_hole_cylinder_parameters& p)
 {
   const std::string who = "make_box_hole_cylinder";
-  internal::check_lengths(who, {{"box length", p.box_length}, {"box width", p.box_width},
-                                {"box height", p.box_height}, {"hole radius", p.hole_radius},
-                                {"cylinder radius", p.cylinder_radius},
-                                {"cylinder height", p.cylinder_height}});
-  internal::check_segments(who, p.segments);
+  internal::check_sizes(who, p.segments, {{"box length", p.box_length}, {"box width", p.box_width},
+                              {"box height", p.box_height}, {"hole radius", p.hole_radius},
+                              {"cylinder radius", p.cylinder_radius},
+                              {"cylinder height", p.cylinder_height}});
   const double fit = 0.9 * (std::min)(0.25 * p.box_length, 0.5 * p.box_width);
   internal::require(p.hole_radius <= fit, who,
                     "hole radius " + internal::to_string_g(p.hole_radius) +

@@ -6,6 +6,7 @@
 
 #include <array>
 #include <cmath>
+#include <limits>
 #include <sstream>
 #include <stdexcept>
 #include <string>
@@ -20,6 +21,12 @@ enum class Parameter_kind
   Length,        ///< scales with the shape (semi-axes): bounded by the data's size when fitting
   Dimensionless  ///< exponents, ratios, tapers: invariant under scaling
 };
+
+/// \ingroup PkgBlendedShapePrimitives
+/// The lower bound of the sizes of primitives (semi-axes): the smallest positive
+/// normal double, so that a model of data of any scale can be held; fits keep
+/// sizes above a fraction of the data's size instead (see Deformable_model_fitter).
+constexpr double smallest_size = std::numeric_limits<double>::min();
 
 /// \ingroup PkgBlendedShapePrimitives
 /// Name, bounds, default value and kind of one primitive parameter.
