@@ -16,6 +16,7 @@
 
 #include <algorithm>
 #include <array>
+#include <optional>
 #include <utility>
 #include <vector>
 #include <cmath>
@@ -65,48 +66,60 @@ struct Ellipsoid_fit
 
 namespace internal {
 
-// The ellipsoid of the moments of `points` (see initialize_from_moments()).
-template <class Geom_traits>
-Ellipsoid_fit<Geom_traits> ellipsoid_from_moments(const std::vector<Eigen::Vector3d>& points, bool refine,
-                                                  double min_ratio)
+// Mean and covariance of the points `kept` of `points` (all if `kept` is
+// empty), accumulated relative to `origin` and in two passes so that clouds
+// far from the origin (scanner coordinates) lose no precision.
+inline std::pair<Eigen::Vector3d, Eigen::Matrix3d> mean_and_covariance(const std::vector<Eigen::Vector3d>& points,
+                                                                     const std::vector<bool>& kept,
+                                                                     const Eigen::Vector3d& origin)
 {
-  typedef typename Geom_traits::Point_3 Point_3;
-  // Centroid and covariance, accumulated relative to the first point so that
-  // clouds far from the origin (scanner coordinates) lose no precision.
-  const Eigen::Vector3d origin = points.front();
+  auto is_kept = [&](std::size_t i) { return kept.empty() || kept[i]; };
   Eigen::Vector3d sum = Eigen::Vector3d::Zero();
-  std::size_t n = 0;
-  for(const Eigen::Vector3d& p : points) { sum += p - origin; ++n; }
-  const Eigen::Vector3d mean = sum / double(n);
+  double n = 0.;
+  for(std::size_t i = 0; i < points.size(); ++i)
+    if(is_kept(i))
+    {
+      sum += points[i] - origin;
+      n += 1.;
+    }
+  const Eigen::Vector3d mean = sum / n;
   Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
-  for(const Eigen::Vector3d& p : points)
-  {
-    const Eigen::Vector3d d = p - origin - mean;
-    cov += d * d.transpose();
-  }
-  cov /= double(n);
+  for(std::size_t i = 0; i < points.size(); ++i)
+    if(is_kept(i))
+    {
+      const Eigen::Vector3d d = points[i] - origin - mean;
+      cov += d * d.transpose();
+    }
+  return {origin + mean, cov / n};
+}
 
-  Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(cov);
-  Eigen::Vector3d lambda;
-  Eigen::Matrix3d R;
-  // Third central moments along each direction: their signs orient the axes
-  // the same way whatever the pose of the cloud (equivariance).
+// The principal directions of the covariance `cov` of `points` about their
+// centroid `c`, largest spread first, as the columns of a rotation, with the
+// eigenvalues in `lambda`. The first two are oriented by the sign of the third
+// central moment along them, so that the frame follows the pose of the cloud
+// (equivariance); a direction of symmetry gets the sign that makes its largest
+// component positive.
+inline Eigen::Matrix3d oriented_principal_frame(const std::vector<Eigen::Vector3d>& points, const Eigen::Vector3d& c,
+                                                const Eigen::Matrix3d& cov, Eigen::Vector3d& lambda)
+{
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(cov);
   Eigen::Vector3d skew = Eigen::Vector3d::Zero();
   for(const Eigen::Vector3d& p : points)
   {
-    const Eigen::Vector3d d = eig.eigenvectors().transpose() * (p - origin - mean);
+    const Eigen::Vector3d d = eig.eigenvectors().transpose() * (p - c);
     skew += d.cwiseProduct(d).cwiseProduct(d);
   }
+  Eigen::Matrix3d R;
   for(int i = 0; i < 3; ++i) // Eigen sorts ascending; we want the largest first
   {
     lambda[i] = (std::max)(eig.eigenvalues()[2 - i], 0.);
     Eigen::Vector3d d = eig.eigenvectors().col(2 - i);
-    const double m3 = skew[2 - i] / double(n);
+    const double m3 = skew[2 - i] / double(points.size());
     if(std::abs(m3) > 1e-6 * std::pow(lambda[i], 1.5))
     {
       if(m3 < 0.) d = -d;
     }
-    else // symmetric along d: any sign is as good; make the largest component positive
+    else
     {
       int k = 0;
       for(int j = 1; j < 3; ++j)
@@ -116,12 +129,53 @@ Ellipsoid_fit<Geom_traits> ellipsoid_from_moments(const std::vector<Eigen::Vecto
     R.col(i) = d;
   }
   R.col(2) = R.col(0).cross(R.col(1)); // right-handed
+  return R;
+}
+
+// The semi-axes of the algebraic fit min sum_i (k . y_i^2 - 1)^2, y_i the
+// points in the frame (c, R), if every k_i > 0 and each axis is within a
+// factor 2 of `moment_axes` (see initialize_from_moments()).
+inline std::optional<std::array<double, 3>> refined_semi_axes(const std::vector<Eigen::Vector3d>& points,
+                                                             const Eigen::Vector3d& c, const Eigen::Matrix3d& R,
+                                                             const std::array<double, 3>& moment_axes)
+{
+  Eigen::Matrix3d A = Eigen::Matrix3d::Zero();
+  Eigen::Vector3d b = Eigen::Vector3d::Zero();
+  for(const Eigen::Vector3d& p : points)
+  {
+    const Eigen::Vector3d y = R.transpose() * (p - c);
+    const Eigen::Vector3d y2 = y.cwiseProduct(y);
+    A += y2 * y2.transpose();
+    b += y2;
+  }
+  const Eigen::Vector3d k = A.ldlt().solve(b);
+  std::array<double, 3> refined;
+  for(std::size_t i = 0; i < 3; ++i)
+  {
+    if(!(k[Eigen::Index(i)] > 0.) || !std::isfinite(k[Eigen::Index(i)]))
+      return std::nullopt;
+    refined[i] = 1. / std::sqrt(k[Eigen::Index(i)]);
+    const double ratio = refined[i] / moment_axes[i];
+    if(!(ratio > 0.5 && ratio < 2.))
+      return std::nullopt;
+  }
+  return refined;
+}
+
+// The ellipsoid of the moments of `points` (see initialize_from_moments()).
+template <class Geom_traits>
+Ellipsoid_fit<Geom_traits> ellipsoid_from_moments(const std::vector<Eigen::Vector3d>& points, bool refine,
+                                                  double min_ratio)
+{
+  typedef typename Geom_traits::Point_3 Point_3;
+  const auto [c, cov] = mean_and_covariance(points, {}, points.front());
+  Eigen::Vector3d lambda;
+  const Eigen::Matrix3d R = oriented_principal_frame(points, c, cov, lambda);
 
   Ellipsoid_fit<Geom_traits> fit;
-  const Eigen::Vector3d c = origin + mean;
   fit.center = Point_3(c[0], c[1], c[2]);
   fit.rotation = internal::quaternion_from_matrix(R);
-  fit.number_of_points = n;
+  fit.number_of_points = points.size();
   for(int i = 0; i < 3; ++i)
     fit.moment_axes[std::size_t(i)] = std::sqrt(3. * lambda[i]);
   fit.axes = fit.moment_axes;
@@ -131,38 +185,12 @@ Ellipsoid_fit<Geom_traits> ellipsoid_from_moments(const std::vector<Eigen::Vecto
     fit.degeneracy = Point_cloud_degeneracy::Collinear;
   else if(fit.moment_axes[2] <= thin)
     fit.degeneracy = Point_cloud_degeneracy::Coplanar;
-
   if(refine && fit.degeneracy == Point_cloud_degeneracy::None)
-  {
-    // min sum (k . y^2 - 1)^2 over the points, y in the principal frame
-    Eigen::Matrix3d A = Eigen::Matrix3d::Zero();
-    Eigen::Vector3d b = Eigen::Vector3d::Zero();
-    for(const Eigen::Vector3d& p : points)
+    if(const auto refined = refined_semi_axes(points, c, R, fit.moment_axes))
     {
-      const Eigen::Vector3d y = R.transpose() * (p - c);
-      const Eigen::Vector3d y2 = y.cwiseProduct(y);
-      A += y2 * y2.transpose();
-      b += y2;
-    }
-    const Eigen::Vector3d k = A.ldlt().solve(b);
-    bool ok = k.allFinite();
-    std::array<double, 3> refined;
-    for(int i = 0; ok && i < 3; ++i)
-    {
-      ok = k[i] > 0.;
-      if(ok)
-      {
-        refined[std::size_t(i)] = 1. / std::sqrt(k[i]);
-        const double ratio = refined[std::size_t(i)] / fit.moment_axes[std::size_t(i)];
-        ok = ratio > 0.5 && ratio < 2.;
-      }
-    }
-    if(ok)
-    {
-      fit.axes = refined;
+      fit.axes = *refined;
       fit.axes_refined = true;
     }
-  }
   const double largest = (std::max)({fit.axes[0], fit.axes[1], fit.axes[2]});
   for(double& a : fit.axes)
     a = (std::max)(a, min_ratio * largest);
@@ -258,27 +286,6 @@ auto initialize_from_moments(const PointRange& points,
 }
 
 namespace internal {
-
-// Mean and covariance of the points `kept` of `points`, relative to `origin`
-// (precision far from the origin).
-inline std::pair<Eigen::Vector3d, Eigen::Matrix3d> mean_and_covariance(const std::vector<Eigen::Vector3d>& points,
-                                                                     const std::vector<bool>& kept,
-                                                                     const Eigen::Vector3d& origin)
-{
-  Eigen::Vector3d sum = Eigen::Vector3d::Zero();
-  Eigen::Matrix3d second = Eigen::Matrix3d::Zero();
-  double n = 0.;
-  for(std::size_t i = 0; i < points.size(); ++i)
-    if(kept[i])
-    {
-      const Eigen::Vector3d d = points[i] - origin;
-      sum += d;
-      second += d * d.transpose();
-      n += 1.;
-    }
-  const Eigen::Vector3d mean = sum / n;
-  return {origin + mean, second / n - mean * mean.transpose()};
-}
 
 // The geometric median (Weiszfeld's iteration from the centroid): a centre
 // that half the points, wherever they are, cannot move far, and that follows
