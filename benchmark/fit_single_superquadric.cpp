@@ -7,6 +7,7 @@
 //
 //   fit_single_superquadric [--quick] [--points N] [--threads N] [--output FILE]
 //   fit_single_superquadric --equivariance N [--output FILE]
+//   fit_single_superquadric --outliers FRACTION --outlier-box FACTOR [--fits N] [--output FILE]
 //
 // --points N: only the clouds of N points (2000, 20000 or 200000).
 // --threads N: the fits on N threads (Fitting_settings::number_of_threads;
@@ -16,6 +17,12 @@
 // sampled and rotated, translated and scaled by 3.7, and reports how far the
 // two fits are apart: relative RMS (eq. 14) and surfaces (the second against
 // the first, transformed).
+//
+// With --outliers, it fits N (default 10) random full views of 6000 points of
+// which FRACTION are strays spread uniformly over FACTOR times the bounding
+// box of the others (the EMS protocol), and reports the RMS distance of the
+// true points to the fitted surface over their bounding-box diagonal, the
+// seconds and the strays found: one table row.
 //
 // Every fit runs in its own child process, whose peak resident memory is
 // reported (points, model meshes, AABB tree and the fit together).
@@ -30,6 +37,7 @@
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdlib>
 #include <cstring>
 #include <iomanip>
@@ -138,12 +146,59 @@ std::string equivariance_table(int cases)
   return table.str();
 }
 
+struct Outlier_outcome
+{
+  double inlier_rms_over_diagonal;
+  double seconds;
+  std::size_t strays_found; // of the strays injected, those judged stray
+  std::size_t inliers_flagged;
+};
+
+// See the header: one row for `fits` clouds with `fraction` strays over `box` times the box.
+std::string outlier_row(double fraction, double box, int fits, std::size_t threads)
+{
+  typedef BS::Deformable_model<BS::Superquadric_ellipsoid<K>> Model;
+  const std::size_t total = 6000, strays = std::size_t(std::lround(fraction * double(total)));
+  std::vector<double> rms, seconds;
+  double found = 0., flagged = 0.;
+  for(int f = 0; f < fits; ++f)
+  {
+    double mib = 0.;
+    const Outlier_outcome o = BB::run_in_child<Outlier_outcome>([&] {
+      std::mt19937_64 rng(5000u + unsigned(f));
+      const Model truth = BS::testing::random_superellipsoid<K>(rng);
+      const auto inliers = BS::testing::synthetic_scan(truth, total - strays, false, 0.002, rng);
+      auto pts = inliers;
+      BS::testing::add_stray_points(pts, strays, box, rng);
+      const auto r = BS::fit_superquadric(pts, BS::parameters::number_of_threads(threads));
+      BS::Deformable_model_fitter<Model> probe(inliers, r.model); // the true points' distances to the fit
+      Outlier_outcome out{std::sqrt(probe.mean_squared_distance(true)) / BS::testing::bounding_box_diagonal(inliers),
+                          r.metrics.seconds, 0, 0};
+      for(std::size_t i : r.stray_points)
+        ++(i >= inliers.size() ? out.strays_found : out.inliers_flagged);
+      return out;
+    }, mib);
+    rms.push_back(o.inlier_rms_over_diagonal);
+    seconds.push_back(o.seconds);
+    found += double(o.strays_found) / fits;
+    flagged += double(o.inliers_flagged) / fits;
+  }
+  std::ostringstream row;
+  row << std::fixed << "| " << std::setprecision(0) << 100. * fraction << " % | " << box << "x | " << fits << " | "
+      << std::setprecision(3) << 100. * median(rms) << " / " << 100. * *std::max_element(rms.begin(), rms.end())
+      << " | " << std::setprecision(2) << median(seconds) << " / " << *std::max_element(seconds.begin(), seconds.end())
+      << " | " << std::setprecision(0) << found << " of " << strays << " | " << std::setprecision(1) << flagged
+      << " |\n";
+  return row.str();
+}
+
 } // namespace
 
 int main(int argc, char** argv)
 {
   bool quick = false;
-  int equivariance = 0;
+  int equivariance = 0, fits = 10;
+  double outliers = -1., outlier_box = 2.;
   std::size_t only_points = 0, threads = 0;
   std::string output;
   for(int i = 1; i < argc; ++i)
@@ -156,12 +211,30 @@ int main(int argc, char** argv)
       threads = std::size_t(std::atoi(argv[++i]));
     else if(std::strcmp(argv[i], "--equivariance") == 0 && i + 1 < argc && std::atoi(argv[i + 1]) > 0)
       equivariance = std::atoi(argv[++i]);
+    else if(std::strcmp(argv[i], "--outliers") == 0 && i + 1 < argc && std::atof(argv[i + 1]) >= 0. &&
+            std::atof(argv[i + 1]) < 1.)
+      outliers = std::atof(argv[++i]);
+    else if(std::strcmp(argv[i], "--outlier-box") == 0 && i + 1 < argc && std::atof(argv[i + 1]) >= 1.)
+      outlier_box = std::atof(argv[++i]);
+    else if(std::strcmp(argv[i], "--fits") == 0 && i + 1 < argc && std::atoi(argv[i + 1]) > 0)
+      fits = std::atoi(argv[++i]);
     else
     {
       std::cerr << "usage: fit_single_superquadric [--quick] [--points N] [--threads N] [--output FILE]\n"
-                   "       fit_single_superquadric --equivariance N [--output FILE]\n";
+                   "       fit_single_superquadric --equivariance N [--output FILE]\n"
+                   "       fit_single_superquadric --outliers FRACTION --outlier-box FACTOR [--fits N] "
+                   "[--threads N] [--output FILE]\n";
       return 2;
     }
+  }
+  if(outliers >= 0.)
+  {
+    const std::string table = "| strays | box | fits | true points' RMS / diagonal, % (median / max) "
+                              "| seconds (median / max) | strays found (mean) | inliers judged stray (mean) |\n"
+                              "|---:|---:|---:|---:|---:|---:|---:|\n" +
+                              outlier_row(outliers, outlier_box, fits, threads);
+    std::cout << "Machine: " << BB::machine_description() << "\n\n" << table;
+    return write_table(output, table);
   }
   if(equivariance > 0)
   {

@@ -190,8 +190,8 @@ void test_bad_input(const Temp_dir& dir)
     std::string err;
     // every output requested first, so that the case's own flags come last
     const int code = run(quote(tool) + " --json " + quote(json) + " --mesh " + quote(dir / "m.ply") +
-                           " --hierarchy " + quote(dir / "h.dot") + " --model " + quote(dir / "model.json") + " " +
-                           c.args,
+                           " --hierarchy " + quote(dir / "h.dot") + " --model " + quote(dir / "model.json") +
+                           " --strays " + quote(dir / "strays.txt") + " " + c.args,
                          dir, &err);
     BS_CHECK(code == c.code, "blended_fit " << c.args << ": exit " << code << " instead of " << c.code);
     BS_CHECK(err.rfind("blended_fit: ", 0) == 0 && err.size() > 20, "no clear message: '" << err << "'");
@@ -213,8 +213,8 @@ void test_good_run(const Temp_dir& dir)
   BS_CHECK(err.find("iteration") != std::string::npos && err.find("parts") != std::string::npos, "no progress shown");
   Json_checker summary(out);
   BS_CHECK(summary.valid(), "the summary is not valid JSON:\n" << out);
-  for(const char* key : {"points", "parameters", "iterations", "relative_rms", "rms_over_bbox_diagonal", "parts",
-                         "holes", "genus", "seconds", "model"})
+  for(const char* key : {"points", "parameters", "iterations", "relative_rms", "rms_over_bbox_diagonal",
+                         "stray_points", "parts", "holes", "genus", "seconds", "model"})
     BS_CHECK(summary.keys.count(key) == 1, "missing key " << key);
   BS_CHECK(summary.numbers["points"] == 800 && summary.numbers["parameters"] == 12, "points / parameters");
   BS_CHECK(summary.numbers["rms_over_bbox_diagonal"] < 0.01, "a poor fit of a clean superquadric");
@@ -237,6 +237,37 @@ void test_good_run(const Temp_dir& dir)
   BS_CHECK(Json_checker(read_file(dir / "s.json")).valid(), "--json file");
   BS_CHECK(run(quote(tool) + " --help", dir, nullptr, &out) == 0 && out.find("Usage") != std::string::npos, "--help");
   blended_shape_test::report("blended_fit_good_run");
+}
+
+// 200 strays over 10 times the box of 800 points: by default they are found
+// (a stray within the noise of the surface may pass for an inlier) and
+// listed by --strays; --no-robust judges none stray.
+void test_strays(const Temp_dir& dir)
+{
+  std::mt19937_64 rng(5);
+  auto points = BS::testing::synthetic_scan(BS::testing::random_superellipsoid<K>(rng), 800, false, 0.002, rng);
+  BS::testing::add_stray_points(points, 200, 10., rng);
+  write_points(dir / "strays.xyz", points);
+  std::string out;
+  BS_CHECK(run(quote(tool) + " " + quote(dir / "strays.xyz") + " --quiet --strays " + quote(dir / "strays.txt"), dir,
+               nullptr, &out) == 0, "--strays");
+  Json_checker summary(out);
+  BS_CHECK(summary.valid(), "the summary is not valid JSON:\n" << out);
+  std::ifstream list(dir / "strays.txt");
+  std::size_t index = 0, listed = 0, strays_listed = 0;
+  while(list >> index)
+  {
+    ++listed;
+    strays_listed += index >= 800 ? 1 : 0;
+  }
+  BS_CHECK(summary.numbers["stray_points"] == double(listed) && strays_listed >= 195 && listed <= 202,
+           "stray count " << summary.numbers["stray_points"] << ", " << listed << " listed, " << strays_listed
+                          << " of them strays");
+  BS_CHECK(run(quote(tool) + " " + quote(dir / "strays.xyz") + " --quiet --no-robust", dir, nullptr, &out) == 0 &&
+             Json_checker(out).valid(), "--no-robust");
+  Json_checker plain(out);
+  BS_CHECK(plain.valid() && plain.numbers["stray_points"] == 0., "--no-robust judged points stray");
+  blended_shape_test::report("blended_fit_strays");
 }
 
 // The same cloud scaled by 1e-12 and 1e12, or moved by 1e15 (exactly: its
@@ -288,6 +319,7 @@ int main()
   Temp_dir dir("blended_test_fit");
   test_bad_input(dir);
   test_good_run(dir);
+  test_strays(dir);
   test_any_scale(dir);
   blended_shape_test::report("test_blended_fit");
   return blended_shape_test::exit_code();

@@ -36,7 +36,11 @@ const char* usage =
   "  --no-holes           do not add holes (this release never does)\n"
   "  --max-iterations N   iteration limit (default 100)\n"
   "  --seed N             random seed for the point subsets (default 0)\n"
-  "  --robust             down-weight far (stray) points with Cauchy weights\n"
+  "  --strays FILE        write the indices (from 0, in input order) of the points judged\n"
+  "                       stray, one a line\n"
+  "  --robust             down-weight stray points (the default: a Gaussian and uniform\n"
+  "                       mixture, see the manual)\n"
+  "  --no-robust          the paper's plain least squares: every point pulls alike\n"
   "  --explicit           use the paper's explicit integrator instead of Gauss-Newton\n"
   "  --threads N          threads of the fit (default 0: all cores); the result does not depend on it\n"
   "  --quiet              no progress on stderr\n"
@@ -97,6 +101,7 @@ void write_summary(std::ostream& out, const Result& r, const std::string& input,
       << number(m.relative_rms[2]) << "],\n"
       << "  \"rms\": " << number(m.rms) << ",\n"
       << "  \"rms_over_bbox_diagonal\": " << number(m.rms_over_bbox_diagonal) << ",\n"
+      << "  \"stray_points\": " << m.number_of_stray_points << ",\n"
       << "  \"parts\": 1,\n"
       << "  \"holes\": 0,\n"
       << "  \"genus\": 0,\n"
@@ -172,11 +177,12 @@ struct Silent : BS::Default_fitting_visitor {};
 
 int main(int argc, char** argv)
 {
-  const auto options = tools::known_options({"--json", "--mesh", "--hierarchy", "--model", "--max-iterations", "--seed", "--threads"},
-                                            {"--no-split", "--no-holes", "--quiet", "--robust", "--explicit"});
+  const auto options = tools::known_options({"--json", "--mesh", "--hierarchy", "--model", "--max-iterations", "--seed",
+                                              "--threads", "--strays"},
+                                             {"--no-split", "--no-holes", "--quiet", "--robust", "--no-robust", "--explicit"});
   return tools::run_tool("blended_fit", usage, argc, argv, options, [](const tools::Command_line& line) {
-    std::string input, json, mesh, hierarchy, model_file;
-    bool no_split = false, no_holes = false, quiet = false, robust = false, explicit_integrator = false;
+    std::string input, json, mesh, hierarchy, model_file, strays;
+    bool no_split = false, no_holes = false, quiet = false, robust = true, explicit_integrator = false;
     std::size_t iterations = 100, threads = 0;
     unsigned int seed = 0;
     for(const tools::Option& o : line.options)
@@ -190,6 +196,8 @@ int main(int argc, char** argv)
       else if(a == "--no-holes") no_holes = true;
       else if(a == "--quiet") quiet = true;
       else if(a == "--robust") robust = true;
+      else if(a == "--no-robust") robust = false;
+      else if(a == "--strays") strays = o.value;
       else if(a == "--explicit") explicit_integrator = true;
       else if(a == "--max-iterations")
       {
@@ -226,7 +234,7 @@ int main(int argc, char** argv)
                 << (read.non_finite_dropped ? " (dropped " + std::to_string(read.non_finite_dropped) +
                                                 " with non-finite coordinates)" : std::string()) << "\n";
     auto np = BS::parameters::number_of_threads(threads,
-                BS::parameters::robust_weighting(robust ? BS::Robust_weighting::Cauchy : BS::Robust_weighting::None,
+                BS::parameters::robust_weighting(robust ? BS::Robust_weighting::Mixture : BS::Robust_weighting::None,
                 BS::parameters::integrator(explicit_integrator ? BS::Integrator::Explicit : BS::Integrator::Gauss_newton)))
                 .number_of_iterations(iterations)
                 .random_seed(seed);
@@ -241,6 +249,10 @@ int main(int argc, char** argv)
     if(!hierarchy.empty())
       BS::internal::write_file_atomically(hierarchy, [&](std::ostream& o) {
         o << "digraph blending_hierarchy {\n  node [shape=box];\n  n0 [label=\"body\\nsuperquadric ellipsoid\"];\n}\n";
+      });
+    if(!strays.empty())
+      BS::internal::write_file_atomically(strays, [&](std::ostream& o) {
+        for(std::size_t i : result.stray_points) o << i << '\n';
       });
     if(!model_file.empty())
       BS::internal::write_file_atomically(model_file, [&](std::ostream& o) { write_model(o, result.model, ""); o << "\n"; });

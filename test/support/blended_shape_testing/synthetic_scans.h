@@ -74,6 +74,25 @@ std::vector<typename Model::Point_3> synthetic_scan(const Model& model, std::siz
   return pts;
 }
 
+// Appends `count` stray points spread uniformly over the bounding box of
+// `pts` scaled by `box_factor` about its centre (the outliers of the EMS
+// protocol: 2 or 10 times the object's box).
+template <class Point_3>
+void add_stray_points(std::vector<Point_3>& pts, std::size_t count, double box_factor, std::mt19937_64& rng)
+{
+  CGAL::Bbox_3 b;
+  for(const auto& p : pts) b += p.bbox();
+  std::uniform_real_distribution<double> unit(-0.5, 0.5);
+  const double c[3] = {0.5 * (b.xmin() + b.xmax()), 0.5 * (b.ymin() + b.ymax()), 0.5 * (b.zmin() + b.zmax())};
+  const double size[3] = {box_factor * (b.xmax() - b.xmin()), box_factor * (b.ymax() - b.ymin()),
+                          box_factor * (b.zmax() - b.zmin())};
+  for(std::size_t i = 0; i < count; ++i)
+  {
+    const double x = c[0] + size[0] * unit(rng), y = c[1] + size[1] * unit(rng), z = c[2] + size[2] * unit(rng);
+    pts.emplace_back(x, y, z);
+  }
+}
+
 } // namespace testing
 } // namespace Blended_shapes
 } // namespace CGAL

@@ -5,6 +5,7 @@
 #include <CGAL/Blended_shape/Primitives/Chart_mesh.h>
 #include <CGAL/Blended_shape/Fitting/Closest_point_locator.h>
 #include <CGAL/Blended_shape/Fitting/Fitting_settings.h>
+#include <CGAL/Blended_shape/Fitting/Robust_loss.h>
 #include <CGAL/Blended_shape/Fitting/Fitting_visitor.h>
 #include <CGAL/Blended_shape/Fitting/internal/Point_blocks.h>
 #include <CGAL/Blended_shape/IO/check_points.h>
@@ -35,8 +36,7 @@ struct Step_report
 {
   std::size_t points_used = 0; ///< the points whose forces the step used (the subset or all)
   /// The true energy `(1/2) sum_i rho(|p_i - x(u_i)|)` at the closest points
-  /// `u_i` of the model before the step (`rho(d) = d^2`, or the Cauchy loss
-  /// `rho(d) = c^2 log(1 + (d / c)^2)`).
+  /// `u_i` of the model before the step (`rho` of Robust_loss: `d^2` without robust weighting).
   double energy_before = 0.;
   double energy_after = 0.;   ///< the same, with the closest points of the new model
   /// The energy of the linearized dynamics at the fixed correspondences (u_i, n_i, w_i)
@@ -62,7 +62,7 @@ struct Data_force
   Chart_point chart_point;                   ///< its closest point u on the model
   typename GeomTraits::Point_3 model_point;  ///< x(u)
   typename GeomTraits::Vector_3 force;       ///< w n n^T (p - x(u))
-  double weight;                             ///< w: 1, or the Cauchy weight
+  double weight;                             ///< w: 1, or the robust weight (Robust_loss::weight())
 };
 
 /// \ingroup PkgBlendedShapeFitting
@@ -251,7 +251,7 @@ public:
 
     Normal_equations system = assemble_normal_equations(active, corr);
     const double spring_energy_before = add_placement_springs(system, q, active.size());
-    report.energy_before = true_energy(corr.distance, corr.scale) + spring_energy_before;
+    report.energy_before = true_energy(corr.distance, corr.loss) + spring_energy_before;
     const std::vector<bool> free_parameter = freeze_parameters_at_bounds(system, q);
     report.fixed_energy_before = report.fixed_energy_after = system.energy;
     report.energy_after = report.energy_before;
@@ -345,7 +345,7 @@ public:
     for(std::size_t k = 0; k < m_all.size(); ++k)
     {
       const Point_3 x = m_model.point(corr.u[k]);
-      const double w = weight(corr.distance[k], corr.scale);
+      const double w = corr.loss.weight(corr.distance[k]);
       const Eigen::Vector3d f =
         (w * corr.normal[k].dot(m_points[k] - Eigen::Vector3d(x.x(), x.y(), x.z()))) * corr.normal[k];
       result.push_back({k, corr.u[k], x, Vector_3(f[0], f[1], f[2]), w});
@@ -353,9 +353,14 @@ public:
     return result;
   }
 
+  /// The robust loss of the current model's distances to all points (see Robust_loss).
+  const Robust_loss& robust_loss() { return correspondences_of_all_points().loss; }
+
   /// The mean squared distance from the points in use (all, or the subset)
   /// to their closest model points: comparable between fits of the same points.
-  double mean_squared_distance(bool all_points)
+  /// Each squared distance is capped at `truncation^2`: then the points
+  /// farther than `truncation` (strays) add the same to every fit.
+  double mean_squared_distance(bool all_points, double truncation = HUGE_VAL)
   {
     // those of the last step, if they are of the subset (as after a run() that stopped after the subset phase)
     const Correspondences& corr = all_points ? correspondences_of_all_points()
@@ -364,7 +369,7 @@ public:
                                                  : (m_scratch = attach(m_model, m_subset));
     double sum = 0.;
     for(double d : corr.distance)
-      sum += d * d;
+      sum += CGAL::square((std::min)(d, truncation));
     return corr.distance.empty() ? 0. : sum / double(corr.distance.size());
   }
 
@@ -404,13 +409,13 @@ private:
   }
 
   // Closest points of the points `active` on `model`: chart points, normals
-  // and distances, with the robust scale of these distances.
+  // and distances, with the robust loss of these distances.
   struct Correspondences
   {
     std::vector<Chart_point> u;
     std::vector<Eigen::Vector3d> normal;
     std::vector<double> distance;
-    double scale = HUGE_VAL; // Cauchy scale c (infinite: no robust weighting)
+    Robust_loss loss; // of these distances
   };
 
   // \throws std::invalid_argument naming the first setting the fit cannot work with.
@@ -540,7 +545,7 @@ private:
       {
         const Point_3 x = m_model.point_and_jacobian(corr.u[k], L);
         const double r = corr.normal[k].dot(m_points[active[k]] - Eigen::Vector3d(x.x(), x.y(), x.z()));
-        const double w = system.w[k] = weight(corr.distance[k], corr.scale);
+        const double w = system.w[k] = corr.loss.weight(corr.distance[k]);
         Jn.noalias() = L.transpose() * corr.normal[k];
         block.g.noalias() += (w * r) * Jn;
         block.energy += 0.5 * w * r * r;
@@ -700,7 +705,7 @@ private:
     if(++trials.sweeps > 2)
       return false;
     Correspondences moved = attach(trial, active, &corr, true);
-    const double F1 = true_energy(moved.distance, corr.scale) + spring1;
+    const double F1 = true_energy(moved.distance, corr.loss) + spring1;
     if(!(F1 <= report.energy_before))
       return false;
     m_model = trial;
@@ -850,9 +855,9 @@ private:
   bool recheck_correspondences()
   {
     const Correspondences& corr = correspondences_of_all_points();
-    const double before = true_energy(corr.distance, corr.scale);
+    const double before = true_energy(corr.distance, corr.loss);
     Correspondences fresh = attach(m_model, m_all, &corr, false, true);
-    const double after = true_energy(fresh.distance, corr.scale);
+    const double after = true_energy(fresh.distance, corr.loss);
     set_correspondences(std::move(fresh), true);
     return after < before * (1. - m_settings.energy_tolerance);
   }
@@ -927,12 +932,11 @@ private:
       c.normal[k] = Eigen::Vector3d(nv.x(), nv.y(), nv.z());
       c.distance[k] = std::sqrt(foot.squared_distance);
     });
-    if(m_settings.robust_weighting == Robust_weighting::Cauchy && !active.empty())
-    {
-      std::vector<double> sorted = c.distance;
-      std::nth_element(sorted.begin(), sorted.begin() + std::ptrdiff_t(sorted.size() / 2), sorted.end());
-      c.scale = (std::max)(2.385 * 1.4826 * sorted[sorted.size() / 2], 1e-9 * m_diameter);
-    }
+    // The strays' volume: the ball of the points' diameter D (rotation-invariant,
+    // unlike their box). The noise is taken to be at most 2 % of D.
+    c.loss = Robust_loss::estimate(m_settings.robust_weighting, c.distance, surface_area(),
+                                   CGAL_PI / 6. * CGAL::square(m_diameter) * m_diameter, 1e-9 * m_diameter,
+                                   0.02 * m_diameter);
     return c;
   }
 
@@ -971,18 +975,31 @@ private:
     return e;
   }
 
-  // Cauchy weights and loss for scale c; c = infinity gives weight 1 and d^2.
-  static double weight(double d, double c) { return std::isinf(c) ? 1. : 1. / (1. + CGAL::square(d / c)); }
-  static double loss(double d, double c)
-  {
-    return std::isinf(c) ? d * d : c * c * std::log1p(CGAL::square(d / c));
-  }
-  static double true_energy(const std::vector<double>& distance, double c)
+  static double true_energy(const std::vector<double>& distance, const Robust_loss& loss)
   {
     double e = 0.;
     for(double d : distance)
-      e += 0.5 * loss(d, c);
+      e += 0.5 * loss.loss(d);
     return e;
+  }
+
+  // The area of the searched faces of the chart meshes as positioned (the
+  // overlaps of charts count twice: an overestimate by a constant factor
+  // that only shifts the strays' density in Robust_loss a little).
+  double surface_area() const
+  {
+    double area = 0.;
+    for(std::size_t i = 0; i < m_charts.size(); ++i)
+    {
+      const auto& mesh = m_charts[i].mesh();
+      for(auto f : mesh.faces())
+        if(m_kept_faces[i][std::size_t(f)])
+        {
+          const auto v = m_charts[i].face_vertices(f);
+          area += std::sqrt(CGAL::to_double(CGAL::squared_area(mesh.point(v[0]), mesh.point(v[1]), mesh.point(v[2]))));
+        }
+    }
+    return area;
   }
 
   Model m_model;

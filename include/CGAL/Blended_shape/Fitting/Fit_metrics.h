@@ -37,6 +37,13 @@ struct Fit_metrics
   std::array<double, 3> relative_rms = {{0., 0., 0.}};
   double rms = 0.;                       ///< `sqrt( (1/N) sum_i |p_i - x(u_i)|^2 )`
   double rms_over_bbox_diagonal = 0.;    ///< rms / diagonal of the points' bounding box
+  /// The points judged stray by the robust loss of the fit at its end
+  /// (Robust_loss::is_stray(): with the default `Robust_weighting::Mixture`,
+  /// those more likely strays than inliers; with `None`, none). The figures
+  /// above (relative_rms, rms, rms_over_bbox_diagonal, and `N` in them) are
+  /// over the other points, and the diagonal is theirs; number_of_points
+  /// counts all.
+  std::size_t number_of_stray_points = 0;
   double seconds = 0.;                   ///< wall time of the fit
   std::optional<double> chamfer_distance; ///< to a reference mesh, when one was given
   bool converged = false;  ///< the fit reached steady state on all points

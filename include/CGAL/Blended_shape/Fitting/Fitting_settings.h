@@ -28,13 +28,17 @@ enum class Integrator
 };
 
 /// \ingroup PkgBlendedShapeFitting
-/// Optional down-weighting of far points (stray points of real scans).
+/// Down-weighting of far points (stray points of real scans).
 enum class Robust_weighting
 {
-  None,  ///< every point pulls with weight 1 (the paper)
+  None,  ///< every point pulls with weight 1 (the paper's least squares)
   /// Cauchy weights `w_i = 1 / (1 + (r_i / c)^2)`, recomputed every iteration from the
-  /// distances `r_i` to the model, with `c = 2.385 * 1.4826 * median(r_i)`.
-  Cauchy
+  /// distances `r_i` to the model, with `c` = cauchy_scale() of the `r_i`.
+  Cauchy,
+  /// The weight of each point is its probability of being an inlier of a
+  /// mixture of Gaussian noise about the surface and strays spread uniformly,
+  /// whose parameters are re-estimated every iteration (see Robust_loss). The default.
+  Mixture
 };
 
 /*!
@@ -67,7 +71,7 @@ struct Fitting_settings
   unsigned int random_seed = 0;
   bool rigid_first = false;               ///< parameter scheduling: translation and rotation alone first
   std::size_t rigid_iterations = 5;       ///< at most this many rigid-only steps
-  Robust_weighting robust_weighting = Robust_weighting::None; ///< weighting of far points
+  Robust_weighting robust_weighting = Robust_weighting::Mixture; ///< weighting of far points
   /// Shape lengths (Parameter_kind::Length, e.g. semi-axes) are kept at most this
   /// factor times the diameter of the points about their centroid (twice the
   /// largest distance to it; unlike a bounding box, it does not depend on the

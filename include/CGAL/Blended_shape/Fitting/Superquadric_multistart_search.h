@@ -132,6 +132,12 @@ similarity search, by short fits:
   if it ends closer to all points (by more than 1 % of the mean squared
   distance, everywhere). At most three rounds.
 
+With robust weighting (the default), the mean squared distances compared
+cap each squared distance at `tau^2`, `tau` 5 % of the largest semi-axis of
+the start (best_start()) or of the fit (search_similar_basins(), when
+called alone): the strays far from all candidates add the same `tau^2` to
+each, instead of making the candidate that reaches farthest towards them win.
+
 The rough fits use a 25th of the subset (160 points by default: enough to
 tell basins apart; the same points for every candidate), loose tolerances
 and at most 10 iterations. Every short fit calls the visitor and the
@@ -171,6 +177,7 @@ public:
   Model best_start(const Ellipsoid_fit<GeomTraits>& initial, Visitor& visitor, const Callback& callback)
   {
     Model start = make_initial_model(initial, 2);
+    set_truncation(start);
     double best_distance = HUGE_VAL;
     auto consider = [&](const Model& m) {
       double d;
@@ -196,14 +203,16 @@ public:
   std::unique_ptr<Fitter> search_similar_basins(std::unique_ptr<Fitter> fitter, Fitting_status& status,
                                                 Visitor& visitor, const Callback& callback)
   {
-    double current = fitter->mean_squared_distance(true);
+    if(!(m_truncation < HUGE_VAL))
+      set_truncation(fitter->model());
+    double current = fitter->mean_squared_distance(true, m_truncation);
     for(int round = 0; round < 3 && !status.aborted && !status.timed_out; ++round)
     {
       const Model fitted = fitter->model();
       double reference;
       {
         Fitter probe(m_points, fitted, m_rough, m_point_map);
-        reference = probe.mean_squared_distance(false);
+        reference = probe.mean_squared_distance(false, m_truncation);
       }
       std::unique_ptr<Fitter> better;
       for(int swap = 0; swap < number_of_similar_superquadrics && !m_status.aborted; ++swap)
@@ -223,7 +232,7 @@ public:
           m_status.aborted = true;
           continue;
         }
-        const double full = challenger->mean_squared_distance(true);
+        const double full = challenger->mean_squared_distance(true, m_truncation);
         if(full < 0.99 * current) // by more than 1 %: not the same rest state again
         {
           current = full;
@@ -254,7 +263,7 @@ private:
     Fitter candidate(m_points, m, m_rough, m_point_map);
     m_status = candidate.run(visitor, callback, Fitting_phase::Subset);
     m_candidate_iterations += m_status.iterations;
-    distance = candidate.mean_squared_distance(false);
+    distance = candidate.mean_squared_distance(false, m_truncation);
     return candidate.model();
   }
 
@@ -272,12 +281,25 @@ private:
     m_candidate_iterations += st.iterations;
     if(st.aborted)
       return challenger;
-    if(!(challenger->mean_squared_distance(false) < 0.99 * best.mean_squared_distance(false)))
+    if(!(challenger->mean_squared_distance(false, m_truncation) <
+         0.99 * best.mean_squared_distance(false, m_truncation)))
       return nullptr;
     challenger = std::make_unique<Fitter>(m_points, challenger->model(), m_settings, m_point_map);
     st = challenger->run(visitor, callback);
     m_candidate_iterations += st.iterations;
     return challenger;
+  }
+
+  // With robust weighting, the candidates' squared distances are capped at
+  // (5 % of the largest semi-axis of `m`)^2: strays far from every candidate
+  // then add the same to each instead of deciding which wins (a stray's
+  // squared distance dwarfs the differences between candidates). Set once per
+  // search, so that all its comparisons use the same cap.
+  void set_truncation(const Model& m)
+  {
+    m_truncation = m_settings.robust_weighting == Robust_weighting::None
+                     ? HUGE_VAL
+                     : 0.05 * m.shape().parameters().template head<3>().maxCoeff();
   }
 
   const PointRange& m_points;
@@ -286,6 +308,7 @@ private:
   Fitting_settings m_rough;      // of the rough fits
   Fitting_settings m_challenger; // of the challengers' fits on the subset
   std::size_t m_candidate_iterations = 0;
+  double m_truncation = HUGE_VAL; // see set_truncation()
   Fitting_status m_status; // of the last rough fit
 };
 

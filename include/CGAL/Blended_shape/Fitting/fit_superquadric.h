@@ -13,6 +13,7 @@
 #include <CGAL/Blended_shape/internal/point_range_types.h>
 #include <CGAL/Blended_shape/parameters.h>
 
+#include <CGAL/Bbox_3.h>
 #include <CGAL/Kernel_traits.h>
 #include <CGAL/Named_function_parameters.h>
 #include <CGAL/boost/graph/named_params_helper.h>
@@ -29,30 +30,54 @@ namespace CGAL {
 namespace Blended_shapes {
 
 /// \ingroup PkgBlendedShapeMetrics
-/// The metrics of the current model of `fitter` after a run() that ended with `status`.
+/// The metrics of the current model of `fitter` after a run() that ended with `status`;
+/// the indices of the points judged stray (Fit_metrics::number_of_stray_points)
+/// go to `stray_points`, in increasing order, if it is given.
 template <class Fitter, class GeomTraits>
 Fit_metrics compute_fit_metrics(Fitter& fitter, const Ellipsoid_fit<GeomTraits>& initial,
-                                const Fitting_status& status)
+                                const Fitting_status& status, std::vector<std::size_t>* stray_points = nullptr)
 {
   Fit_metrics m;
   const auto forces = fitter.forces();
   std::vector<Eigen::Vector3d> residuals;
+  std::vector<double> distances;
   residuals.reserve(forces.size());
-  double sum = 0.;
+  distances.reserve(forces.size());
   for(const auto& f : forces)
   {
     // Reported figures deserve foot points polished beyond what a fitting step needs.
     const Eigen::Vector3d& p = fitter.points()[f.index];
     const auto x = fitter.model().point(refine_closest_point(fitter.model(), p, f.chart_point, 50));
     residuals.push_back(p - Eigen::Vector3d(CGAL::to_double(x.x()), CGAL::to_double(x.y()), CGAL::to_double(x.z())));
-    sum += residuals.back().squaredNorm();
+    distances.push_back(residuals.back().norm());
+  }
+  const Robust_loss& loss = fitter.robust_loss();
+  std::vector<Eigen::Vector3d> inlier_residuals;
+  CGAL::Bbox_3 inlier_box;
+  double sum = 0.;
+  for(std::size_t k = 0; k < forces.size(); ++k)
+  {
+    if(loss.is_stray(distances[k]))
+    {
+      ++m.number_of_stray_points;
+      if(stray_points != nullptr)
+        stray_points->push_back(forces[k].index);
+      continue;
+    }
+    const Eigen::Vector3d& p = fitter.points()[forces[k].index];
+    inlier_box += CGAL::Bbox_3(p[0], p[1], p[2], p[0], p[1], p[2]);
+    inlier_residuals.push_back(residuals[k]);
+    sum += residuals[k].squaredNorm();
   }
   m.number_of_points = forces.size();
   m.number_of_parameters = fitter.model().number_of_parameters();
   m.iterations = status.iterations;
-  m.relative_rms = relative_rms(residuals, initial);
-  m.rms = forces.empty() ? 0. : std::sqrt(sum / double(forces.size()));
-  m.rms_over_bbox_diagonal = m.rms / fitter.bounding_box_diagonal();
+  m.relative_rms = relative_rms(inlier_residuals, initial);
+  m.rms = inlier_residuals.empty() ? 0. : std::sqrt(sum / double(inlier_residuals.size()));
+  const double diagonal = std::sqrt(CGAL::square(inlier_box.xmax() - inlier_box.xmin()) +
+                                    CGAL::square(inlier_box.ymax() - inlier_box.ymin()) +
+                                    CGAL::square(inlier_box.zmax() - inlier_box.zmin()));
+  m.rms_over_bbox_diagonal = diagonal > 0. ? m.rms / diagonal : 0.;
   m.seconds = status.seconds;
   m.converged = status.converged;
   m.aborted = status.aborted;
@@ -68,6 +93,9 @@ struct Fit_result
   Model model;                                  ///< the fitted model
   Ellipsoid_fit<GeomTraits> initial_ellipsoid;  ///< the initialization (sec. 5.3), also the frame of eq. 14
   Fit_metrics metrics;                          ///< the fit figures
+  /// The indices (in the input order) of the points judged stray, increasing
+  /// (see Fit_metrics::number_of_stray_points).
+  std::vector<std::size_t> stray_points;
   std::vector<Chart_mesh<GeomTraits>> meshes;   ///< the model's chart meshes, positioned
 };
 
@@ -75,7 +103,9 @@ struct Fit_result
 \ingroup PkgBlendedShapeFitting
 
 Fits one superquadric ellipsoid to `points`, in one call: best-fit
-ellipsoid initialization (initialize_from_moments()), the search for the
+ellipsoid initialization (initialize_from_trimmed_moments(), or with
+`robust_weighting` `Robust_weighting::None` the paper's
+initialize_from_moments()), the search for the
 closest start (Superquadric_multistart_search), the physics-based fit of
 Deformable_model_fitter until steady state, the search for a closer fit
 from similar superquadrics, then the metrics.
@@ -137,7 +167,9 @@ auto fit_superquadric(const PointRange& points, const NamedParameters& np = CGAL
   typedef CGAL::Identity_property_map<Point_3> Normalized_point_map;
   const internal::Point_normalization<Geom_traits> normalization(points, point_map);
   const std::vector<Point_3> normalized = normalization.normalized_points(points, point_map);
-  const auto initial = initialize_from_moments(normalized);
+  // Strays ruin the moments (sec. 5.3's initialization) when many are far away.
+  const auto initial = s.robust_weighting == Robust_weighting::None ? initialize_from_moments(normalized)
+                                                                    : initialize_from_trimmed_moments(normalized);
   typedef Superquadric_multistart_search<Geom_traits, std::vector<Point_3>, Normalized_point_map> Search;
   typedef typename Search::Model Model;
   typedef typename Search::Fitter Fitter;
@@ -152,12 +184,13 @@ auto fit_superquadric(const PointRange& points, const NamedParameters& np = CGAL
   final_status.iterations += search.candidate_iterations();
   final_status.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 
-  Fit_metrics metrics = compute_fit_metrics(*fitter, initial, final_status);
+  std::vector<std::size_t> stray_points;
+  Fit_metrics metrics = compute_fit_metrics(*fitter, initial, final_status, &stray_points);
   if(reference != nullptr)
     metrics.chamfer_distance = symmetric_chamfer_distance(fitter->chart_meshes(), normalization.to_normalized_mesh(*reference));
   const Model model = normalization.model_from_normalized(fitter->model());
   Fit_result<Geom_traits> result{model, normalization.from_normalized(initial), normalization.from_normalized(metrics),
-                                 normalization.positioned_meshes(fitter->chart_meshes(), model)};
+                                 std::move(stray_points), normalization.positioned_meshes(fitter->chart_meshes(), model)};
   return result;
 }
 

@@ -14,7 +14,11 @@
 
 #include <Eigen/Dense>
 
+#include <algorithm>
 #include <array>
+#include <optional>
+#include <utility>
+#include <vector>
 #include <cmath>
 #include <stdexcept>
 
@@ -60,6 +64,179 @@ struct Ellipsoid_fit
   }
 };
 
+namespace internal {
+
+// Mean and covariance of the points `kept` of `points` (all if `kept` is
+// empty), accumulated relative to `origin` and in two passes so that clouds
+// far from the origin (scanner coordinates) lose no precision.
+inline std::pair<Eigen::Vector3d, Eigen::Matrix3d> mean_and_covariance(const std::vector<Eigen::Vector3d>& points,
+                                                                     const std::vector<bool>& kept,
+                                                                     const Eigen::Vector3d& origin)
+{
+  auto is_kept = [&](std::size_t i) { return kept.empty() || kept[i]; };
+  Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+  double n = 0.;
+  for(std::size_t i = 0; i < points.size(); ++i)
+    if(is_kept(i))
+    {
+      sum += points[i] - origin;
+      n += 1.;
+    }
+  const Eigen::Vector3d mean = sum / n;
+  Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
+  for(std::size_t i = 0; i < points.size(); ++i)
+    if(is_kept(i))
+    {
+      const Eigen::Vector3d d = points[i] - origin - mean;
+      cov += d * d.transpose();
+    }
+  return {origin + mean, cov / n};
+}
+
+// The principal directions of the covariance `cov` of `points` about their
+// centroid `c`, largest spread first, as the columns of a rotation, with the
+// eigenvalues in `lambda`. The first two are oriented by the sign of the third
+// central moment along them, so that the frame follows the pose of the cloud
+// (equivariance); a direction of symmetry gets the sign that makes its largest
+// component positive.
+inline Eigen::Matrix3d oriented_principal_frame(const std::vector<Eigen::Vector3d>& points, const Eigen::Vector3d& c,
+                                                const Eigen::Matrix3d& cov, Eigen::Vector3d& lambda)
+{
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(cov);
+  Eigen::Vector3d skew = Eigen::Vector3d::Zero();
+  for(const Eigen::Vector3d& p : points)
+  {
+    const Eigen::Vector3d d = eig.eigenvectors().transpose() * (p - c);
+    skew += d.cwiseProduct(d).cwiseProduct(d);
+  }
+  Eigen::Matrix3d R;
+  for(int i = 0; i < 3; ++i) // Eigen sorts ascending; we want the largest first
+  {
+    lambda[i] = (std::max)(eig.eigenvalues()[2 - i], 0.);
+    Eigen::Vector3d d = eig.eigenvectors().col(2 - i);
+    const double m3 = skew[2 - i] / double(points.size());
+    if(std::abs(m3) > 1e-6 * std::pow(lambda[i], 1.5))
+    {
+      if(m3 < 0.) d = -d;
+    }
+    else
+    {
+      int k = 0;
+      for(int j = 1; j < 3; ++j)
+        if(std::abs(d[j]) > std::abs(d[k])) k = j;
+      if(d[k] < 0.) d = -d;
+    }
+    R.col(i) = d;
+  }
+  R.col(2) = R.col(0).cross(R.col(1)); // right-handed
+  return R;
+}
+
+// The semi-axes of the algebraic fit min sum_i (k . y_i^2 - 1)^2, y_i the
+// points in the frame (c, R), if every k_i > 0 and each axis is within a
+// factor 2 of `moment_axes` (see initialize_from_moments()).
+inline std::optional<std::array<double, 3>> refined_semi_axes(const std::vector<Eigen::Vector3d>& points,
+                                                             const Eigen::Vector3d& c, const Eigen::Matrix3d& R,
+                                                             const std::array<double, 3>& moment_axes)
+{
+  Eigen::Matrix3d A = Eigen::Matrix3d::Zero();
+  Eigen::Vector3d b = Eigen::Vector3d::Zero();
+  for(const Eigen::Vector3d& p : points)
+  {
+    const Eigen::Vector3d y = R.transpose() * (p - c);
+    const Eigen::Vector3d y2 = y.cwiseProduct(y);
+    A += y2 * y2.transpose();
+    b += y2;
+  }
+  const Eigen::Vector3d k = A.ldlt().solve(b);
+  std::array<double, 3> refined;
+  for(std::size_t i = 0; i < 3; ++i)
+  {
+    if(!(k[Eigen::Index(i)] > 0.) || !std::isfinite(k[Eigen::Index(i)]))
+      return std::nullopt;
+    refined[i] = 1. / std::sqrt(k[Eigen::Index(i)]);
+    const double ratio = refined[i] / moment_axes[i];
+    if(!(ratio > 0.5 && ratio < 2.))
+      return std::nullopt;
+  }
+  return refined;
+}
+
+// The ellipsoid of the moments of `points` (see initialize_from_moments()).
+template <class Geom_traits>
+Ellipsoid_fit<Geom_traits> ellipsoid_from_moments(const std::vector<Eigen::Vector3d>& points, bool refine,
+                                                  double min_ratio)
+{
+  typedef typename Geom_traits::Point_3 Point_3;
+  const auto [c, cov] = mean_and_covariance(points, {}, points.front());
+  Eigen::Vector3d lambda;
+  const Eigen::Matrix3d R = oriented_principal_frame(points, c, cov, lambda);
+
+  Ellipsoid_fit<Geom_traits> fit;
+  fit.center = Point_3(c[0], c[1], c[2]);
+  fit.rotation = internal::quaternion_from_matrix(R);
+  fit.number_of_points = points.size();
+  for(int i = 0; i < 3; ++i)
+    fit.moment_axes[std::size_t(i)] = std::sqrt(3. * lambda[i]);
+  fit.axes = fit.moment_axes;
+
+  const double thin = 1e-6 * fit.moment_axes[0];
+  if(fit.moment_axes[1] <= thin)
+    fit.degeneracy = Point_cloud_degeneracy::Collinear;
+  else if(fit.moment_axes[2] <= thin)
+    fit.degeneracy = Point_cloud_degeneracy::Coplanar;
+  if(refine && fit.degeneracy == Point_cloud_degeneracy::None)
+    if(const auto refined = refined_semi_axes(points, c, R, fit.moment_axes))
+    {
+      fit.axes = *refined;
+      fit.axes_refined = true;
+    }
+  const double largest = (std::max)({fit.axes[0], fit.axes[1], fit.axes[2]});
+  for(double& a : fit.axes)
+    a = (std::max)(a, min_ratio * largest);
+  return fit;
+}
+
+// The coordinates of the points, checked (check_points()).
+template <class PointRange, class NamedParameters>
+std::vector<Eigen::Vector3d> checked_point_coordinates(const PointRange& points, const NamedParameters& np)
+{
+  const auto point_map = Point_range_types<PointRange, NamedParameters>::point_map(np);
+  check_points(points, point_map);
+  std::vector<Eigen::Vector3d> result;
+  for(const auto& item : points)
+  {
+    const auto& p = get(point_map, item);
+    result.emplace_back(CGAL::to_double(p.x()), CGAL::to_double(p.y()), CGAL::to_double(p.z()));
+  }
+  return result;
+}
+
+} // namespace internal
+
+namespace internal {
+
+struct Moment_options
+{
+  bool refine;
+  double minimum_axis_ratio;
+};
+
+// The named parameters of initialize_from_moments().
+template <class NamedParameters>
+Moment_options moment_options(const NamedParameters& np)
+{
+  using CGAL::parameters::choose_parameter;
+  using CGAL::parameters::get_parameter;
+  const Moment_options options{choose_parameter(get_parameter(np, internal_np::refine_axes), true),
+                               choose_parameter(get_parameter(np, internal_np::minimum_axis_ratio), 0.01)};
+  if(!(options.minimum_axis_ratio > 0. && options.minimum_axis_ratio <= 1.))
+    throw std::invalid_argument("initialize_from_moments: minimum_axis_ratio must be in (0, 1]");
+  return options;
+}
+
+} // namespace internal
+
 /*!
 \ingroup PkgBlendedShapeInitialization
 
@@ -102,120 +279,117 @@ template <class PointRange, class NamedParameters = CGAL::parameters::Default_na
 auto initialize_from_moments(const PointRange& points,
                              const NamedParameters& np = CGAL::parameters::default_values())
 {
-  using CGAL::parameters::choose_parameter;
-  using CGAL::parameters::get_parameter;
-  typedef internal::Point_range_types<PointRange, NamedParameters> Types;
-  typedef typename Types::Point_3 Point_3;
-  typedef typename Types::Geom_traits Geom_traits;
+  typedef typename internal::Point_range_types<PointRange, NamedParameters>::Geom_traits Geom_traits;
+  const internal::Moment_options options = internal::moment_options(np);
+  return internal::ellipsoid_from_moments<Geom_traits>(internal::checked_point_coordinates(points, np),
+                                                      options.refine, options.minimum_axis_ratio);
+}
 
-  const typename Types::Point_map point_map = Types::point_map(np);
-  const bool refine = choose_parameter(get_parameter(np, internal_np::refine_axes), true);
-  const double min_ratio = choose_parameter(get_parameter(np, internal_np::minimum_axis_ratio), 0.01);
-  if(!(min_ratio > 0. && min_ratio <= 1.))
-    throw std::invalid_argument("initialize_from_moments: minimum_axis_ratio must be in (0, 1]");
+namespace internal {
 
-  check_points(points, point_map);
-
-  // Centroid and covariance, accumulated relative to the first point so that
-  // clouds far from the origin (scanner coordinates) lose no precision.
-  auto coords = [&](const auto& item) {
-    const Point_3& p = get(point_map, item);
-    return Eigen::Vector3d(CGAL::to_double(p.x()), CGAL::to_double(p.y()), CGAL::to_double(p.z()));
-  };
-  const Eigen::Vector3d origin = coords(*points.begin());
-  Eigen::Vector3d sum = Eigen::Vector3d::Zero();
-  std::size_t n = 0;
-  for(const auto& item : points) { sum += coords(item) - origin; ++n; }
-  const Eigen::Vector3d mean = sum / double(n);
-  Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
-  for(const auto& item : points)
+// The geometric median (Weiszfeld's iteration from the centroid): a centre
+// that half the points, wherever they are, cannot move far, and that follows
+// rotations, translations and scalings of the cloud.
+inline Eigen::Vector3d geometric_median(const std::vector<Eigen::Vector3d>& points)
+{
+  Eigen::Vector3d c = Eigen::Vector3d::Zero();
+  for(const Eigen::Vector3d& p : points) c += p - points.front();
+  c = points.front() + c / double(points.size());
+  for(int iteration = 0; iteration < 100; ++iteration)
   {
-    const Eigen::Vector3d d = coords(item) - origin - mean;
-    cov += d * d.transpose();
-  }
-  cov /= double(n);
-
-  Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(cov);
-  Eigen::Vector3d lambda;
-  Eigen::Matrix3d R;
-  // Third central moments along each direction: their signs orient the axes
-  // the same way whatever the pose of the cloud (equivariance).
-  Eigen::Vector3d skew = Eigen::Vector3d::Zero();
-  for(const auto& item : points)
-  {
-    const Eigen::Vector3d d = eig.eigenvectors().transpose() * (coords(item) - origin - mean);
-    skew += d.cwiseProduct(d).cwiseProduct(d);
-  }
-  for(int i = 0; i < 3; ++i) // Eigen sorts ascending; we want the largest first
-  {
-    lambda[i] = (std::max)(eig.eigenvalues()[2 - i], 0.);
-    Eigen::Vector3d d = eig.eigenvectors().col(2 - i);
-    const double m3 = skew[2 - i] / double(n);
-    if(std::abs(m3) > 1e-6 * std::pow(lambda[i], 1.5))
+    Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+    double weights = 0.;
+    for(const Eigen::Vector3d& p : points)
     {
-      if(m3 < 0.) d = -d;
-    }
-    else // symmetric along d: any sign is as good; make the largest component positive
-    {
-      int k = 0;
-      for(int j = 1; j < 3; ++j)
-        if(std::abs(d[j]) > std::abs(d[k])) k = j;
-      if(d[k] < 0.) d = -d;
-    }
-    R.col(i) = d;
-  }
-  R.col(2) = R.col(0).cross(R.col(1)); // right-handed
-
-  Ellipsoid_fit<Geom_traits> fit;
-  const Eigen::Vector3d c = origin + mean;
-  fit.center = Point_3(c[0], c[1], c[2]);
-  fit.rotation = internal::quaternion_from_matrix(R);
-  fit.number_of_points = n;
-  for(int i = 0; i < 3; ++i)
-    fit.moment_axes[std::size_t(i)] = std::sqrt(3. * lambda[i]);
-  fit.axes = fit.moment_axes;
-
-  const double thin = 1e-6 * fit.moment_axes[0];
-  if(fit.moment_axes[1] <= thin)
-    fit.degeneracy = Point_cloud_degeneracy::Collinear;
-  else if(fit.moment_axes[2] <= thin)
-    fit.degeneracy = Point_cloud_degeneracy::Coplanar;
-
-  if(refine && fit.degeneracy == Point_cloud_degeneracy::None)
-  {
-    // min sum (k . y^2 - 1)^2 over the points, y in the principal frame
-    Eigen::Matrix3d A = Eigen::Matrix3d::Zero();
-    Eigen::Vector3d b = Eigen::Vector3d::Zero();
-    for(const auto& item : points)
-    {
-      const Eigen::Vector3d y = R.transpose() * (coords(item) - c);
-      const Eigen::Vector3d y2 = y.cwiseProduct(y);
-      A += y2 * y2.transpose();
-      b += y2;
-    }
-    const Eigen::Vector3d k = A.ldlt().solve(b);
-    bool ok = k.allFinite();
-    std::array<double, 3> refined;
-    for(int i = 0; ok && i < 3; ++i)
-    {
-      ok = k[i] > 0.;
-      if(ok)
+      const double d = (p - c).norm();
+      if(d > 0.)
       {
-        refined[std::size_t(i)] = 1. / std::sqrt(k[i]);
-        const double ratio = refined[std::size_t(i)] / fit.moment_axes[std::size_t(i)];
-        ok = ratio > 0.5 && ratio < 2.;
+        sum += (p - c) / d;
+        weights += 1. / d;
       }
     }
-    if(ok)
-    {
-      fit.axes = refined;
-      fit.axes_refined = true;
-    }
+    if(!(weights > 0.))
+      break;
+    const Eigen::Vector3d step = sum / weights;
+    c += step;
+    if(step.norm() <= 1e-12 * (std::sqrt(1. / weights) + c.norm()))
+      break;
   }
-  const double largest = (std::max)({fit.axes[0], fit.axes[1], fit.axes[2]});
-  for(double& a : fit.axes)
-    a = (std::max)(a, min_ratio * largest);
-  return fit;
+  return c;
+}
+
+} // namespace internal
+
+/// \ingroup PkgBlendedShapeInitialization
+/// A point is kept by initialize_from_trimmed_moments() if its Mahalanobis
+/// distance is at most this factor times that of a sphere's points,
+/// `sqrt(3)`: with room for boxy superellipsoids, whose corners are
+/// farther (those of a flat box, about 1.53 times).
+constexpr double trimmed_moments_cutoff = 1.75;
+
+/*!
+\ingroup PkgBlendedShapeInitialization
+
+The best-fit ellipsoid of initialize_from_moments() fitted to the points of
+`points` that are not stray: the moments of many stray points spread over
+a box around the object give an ellipsoid the size of the box. The points
+kept are found by iterative trimming:
+
+1. start: the points within twice the median distance `m` of the geometric
+   median `c` (`|p_i - c| <= 2 m`);
+2. repeat with the mean `mu` and covariance `Sigma` of the points kept: keep
+   the points whose Mahalanobis distance
+   `d_i^2 = (p_i - mu)^T Sigma^-1 (p_i - mu)` is at most
+   `3 k^2`, `k` = trimmed_moments_cutoff (points spread over a sphere are all at `d_i^2 = 3`),
+   until the set no longer changes (at most 50 times);
+3. the result is initialize_from_moments() of the points kept.
+
+A cloud without strays keeps every point, and the result is that of
+initialize_from_moments(). Strays inside the ellipsoid of step 2 are kept:
+over a box twice the object's size they make the ellipsoid too large, most
+along its short axes (up to twice for a flat object), which the fit with
+robust weights then has to correct.
+`number_of_points` is the number of points kept.
+
+Named parameters, exceptions: as for initialize_from_moments().
+*/
+template <class PointRange, class NamedParameters = CGAL::parameters::Default_named_parameters>
+auto initialize_from_trimmed_moments(const PointRange& points,
+                                     const NamedParameters& np = CGAL::parameters::default_values())
+{
+  typedef typename internal::Point_range_types<PointRange, NamedParameters>::Geom_traits Geom_traits;
+  const internal::Moment_options options = internal::moment_options(np);
+  const std::vector<Eigen::Vector3d> all = internal::checked_point_coordinates(points, np);
+
+  const Eigen::Vector3d c = internal::geometric_median(all);
+  std::vector<double> distance(all.size());
+  for(std::size_t i = 0; i < all.size(); ++i) distance[i] = (all[i] - c).norm();
+  std::vector<double> sorted = distance;
+  std::nth_element(sorted.begin(), sorted.begin() + std::ptrdiff_t(sorted.size() / 2), sorted.end());
+  const double start_radius = 2. * sorted[sorted.size() / 2];
+  std::vector<bool> kept(all.size());
+  for(std::size_t i = 0; i < all.size(); ++i) kept[i] = distance[i] <= start_radius;
+
+  const double cutoff = 3. * CGAL::square(trimmed_moments_cutoff);
+  for(int iteration = 0; iteration < 50; ++iteration)
+  {
+    const auto [mean, cov] = internal::mean_and_covariance(all, kept, c);
+    // a tiny ridge: flat clouds have a singular covariance
+    const Eigen::Matrix3d inverse = (cov + 1e-12 * cov.trace() * Eigen::Matrix3d::Identity()).inverse();
+    std::vector<bool> next(all.size());
+    for(std::size_t i = 0; i < all.size(); ++i)
+      next[i] = (all[i] - mean).dot(inverse * (all[i] - mean)) <= cutoff;
+    if(next == kept)
+      break;
+    kept = std::move(next);
+  }
+  auto kept_points = [&] {
+    std::vector<Eigen::Vector3d> inliers;
+    for(std::size_t i = 0; i < all.size(); ++i)
+      if(kept[i]) inliers.push_back(all[i]);
+    return inliers.size() < minimum_number_of_points ? all : inliers; // nothing sensible to trim to
+  };
+  return internal::ellipsoid_from_moments<Geom_traits>(kept_points(), options.refine, options.minimum_axis_ratio);
 }
 
 } // namespace Blended_shapes
