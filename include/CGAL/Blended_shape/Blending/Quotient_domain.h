@@ -354,6 +354,36 @@ public:
   /// The length of the longest edge of the quotient adjacency: the size of
   /// one ring, the additive error scale of the distances.
   double max_edge_length() const { return m_max_edge; }
+
+  /// Up to three nodes and weights (non-negative, summing to 1) that
+  /// interpolate a function given at the nodes linearly at a point of the surface.
+  struct Node_weights
+  {
+    std::array<std::size_t, 3> nodes = {{0, 0, 0}}; ///< the nodes
+    std::array<double, 3> weights = {{0., 0., 0.}}; ///< their weights
+    std::size_t count = 0;                          ///< how many (1 to 3)
+  };
+
+  /*!
+  The interpolation weights at `p`, a point of the surface: the barycentric
+  coordinates of its canonical point in the face of the canonical chart's
+  mesh that holds it, over the corners that are nodes (renormalized); weight
+  1 on the nearest node if no corner is on the surface.
+  	hrows std::invalid_argument as topological_distance() does
+  */
+  Node_weights interpolation_weights(const Shape_point& p) const
+  {
+    const Attachment a = attach_query(p, "interpolation_weights", "query");
+    Node_weights w;
+    w.count = a.count;
+    w.nodes = a.nodes;
+    double sum = 0.;
+    for(std::size_t k = 0; k < a.count; ++k)
+      sum += (w.weights[k] = (std::max)(a.barycentric[k], 0.));
+    for(std::size_t k = 0; k < a.count; ++k) // all corners outside the face's triangle: equal shares
+      w.weights[k] = (sum > 0.) ? w.weights[k] / sum : 1. / double(a.count);
+    return w;
+  }
   /// @}
 
   /// \name Topological distance
@@ -399,7 +429,8 @@ private:
     Shape_point canonical;
     Eigen::Vector3d x = Eigen::Vector3d::Zero();
     std::array<std::size_t, 3> nodes = {{0, 0, 0}};
-    std::array<double, 3> weights = {{0., 0., 0.}};
+    std::array<double, 3> weights = {{0., 0., 0.}};     // distances in space
+    std::array<double, 3> barycentric = {{1., 0., 0.}}; // in the face (1 for a nearest node)
     std::size_t count = 0;
     std::tuple<std::size_t, std::size_t, double, double> key() const
     {
@@ -516,21 +547,23 @@ private:
     a.x = x;
     a.piece = piece_of(c);
     const Piece_mesh& m = m_pieces.pieces()[a.piece].mesh;
-    a.face = m_locators[a.piece].locate(c.u.x, c.u.y).face;
+    const typename internal::Chart_face_locator<GeomTraits>::Location loc = m_locators[a.piece].locate(c.u.x, c.u.y);
+    a.face = loc.face;
     const face_descriptor f(static_cast<typename face_descriptor::size_type>(a.face));
-    for(vertex_descriptor v : m.face_vertices(f))
+    const std::array<vertex_descriptor, 3> corners = m.face_vertices(f);
+    for(std::size_t k = 0; k < 3; ++k)
     {
-      const std::size_t n = m_node_of[a.piece][std::size_t(v)];
+      const std::size_t n = m_node_of[a.piece][std::size_t(corners[k])];
       if(n != no_node)
       {
         a.nodes[a.count] = n;
         a.weights[a.count] = (m_x[n] - x).norm();
+        a.barycentric[a.count] = loc.barycentric[k];
         ++a.count;
       }
     }
     if(a.count == 0)
     { // the point is on the surface, its face's corners are not: the nearest node within two rings
-      const std::array<vertex_descriptor, 3> corners = m.face_vertices(f);
       std::vector<vertex_descriptor> ring(corners.begin(), corners.end());
       for(int step = 0; step < 2 && a.count == 0; ++step)
       {
@@ -549,6 +582,7 @@ private:
           {
             a.nodes[0] = n;
             a.weights[0] = w;
+            a.barycentric[0] = 1.;
             a.count = 1;
           }
         }

@@ -63,6 +63,7 @@ struct Data_force
   typename GeomTraits::Point_3 model_point;  ///< x(u)
   typename GeomTraits::Vector_3 force;       ///< w n n^T (p - x(u))
   double weight;                             ///< w: 1, or the robust weight (Robust_loss::weight())
+  double normal_distance;                    ///< n . (p - x(u)): how far out of the surface the point is
 };
 
 /// \ingroup PkgBlendedShapeFitting
@@ -346,9 +347,9 @@ public:
     {
       const Point_3 x = m_model.point(corr.u[k]);
       const double w = corr.loss.weight(corr.distance[k]);
-      const Eigen::Vector3d f =
-        (w * corr.normal[k].dot(m_points[k] - Eigen::Vector3d(x.x(), x.y(), x.z()))) * corr.normal[k];
-      result.push_back({k, corr.u[k], x, Vector_3(f[0], f[1], f[2]), w});
+      const double r = corr.normal[k].dot(m_points[k] - Eigen::Vector3d(x.x(), x.y(), x.z()));
+      const Eigen::Vector3d f = (w * r) * corr.normal[k];
+      result.push_back({k, corr.u[k], x, Vector_3(f[0], f[1], f[2]), w, r});
     }
     return result;
   }
