@@ -5,4 +5,6 @@
 #ifndef CGAL_BLENDED_SHAPE_EVOLUTION_H
 #define CGAL_BLENDED_SHAPE_EVOLUTION_H
 
+#include <CGAL/Blended_shape/Evolution/Force_regions.h>
+
 #endif // CGAL_BLENDED_SHAPE_EVOLUTION_H

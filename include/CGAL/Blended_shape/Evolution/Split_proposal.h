@@ -1,0 +1,179 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
+#ifndef CGAL_BLENDED_SHAPE_EVOLUTION_SPLIT_PROPOSAL_H
+#define CGAL_BLENDED_SHAPE_EVOLUTION_SPLIT_PROPOSAL_H
+
+#include <CGAL/Blended_shape/Blending/Ellipse_blending_region.h>
+#include <CGAL/Blended_shape/Evolution/Force_regions.h>
+#include <CGAL/Blended_shape/Fitting/Deformable_blended_model.h>
+
+#include <Eigen/Core>
+#include <Eigen/Eigenvalues>
+
+#include <algorithm>
+#include <cmath>
+#include <cstddef>
+#include <optional>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace CGAL {
+namespace Blended_shapes {
+
+/// \ingroup PkgBlendedShapeEvolution
+/// Where to split a model (sec. 4.1, 5.4): the blending region of a split
+/// (`Blended_shape::split()`) made from a boundary curve of `Force_regions`.
+struct Split_proposal
+{
+  std::size_t boundary = 0;  ///< the boundary curve it comes from (index in Force_regions::boundaries())
+  std::size_t component = 0; ///< the component to split
+  std::size_t chart = 0;     ///< the component's chart that holds the region
+  /// The ellipse region (eq. 29): centre, radii and angle in the chart, `w = 1`, `h = 0`.
+  Ellipse_blending_region::Parameter_vector region = Ellipse_blending_region::make_parameters(0., 0., 0.5, 0.5, 0.);
+  double half_width = 0.;       ///< the strip half-width `r`, in chart units
+  std::size_t new_part_region = 0; ///< the force region inside the ellipse: the side that becomes the new part
+};
+
+/*!
+\ingroup PkgBlendedShapeEvolution
+
+The split along boundary curve `boundary` of `regions` (the best one, of
+the largest flux difference, by default), or nothing if no ellipse can be
+made of it. The paper leaves the details open; here:
+
+- <b>Side</b>: of the curve's two regions, the one of smaller area becomes
+  the new part (`new_part_region`): the protrusion or the dent, not the body.
+- <b>Centre and chart</b>: the node of the new part's region nearest to the
+  region's mean position (weighted by the nodes' areas): the middle of the
+  part on the surface, even when the curve around it crosses a chart seam.
+  The region goes in the chart of that node's canonical point.
+- <b>Radii and angle</b> (eq. 29): from the second moments, about the centre,
+  of the curve's edge midpoints that the chart covers (`to_chart()`): for
+  points spread evenly along an ellipse of radii `e_1, e_2` they are
+  `e_1^2 / 2` and `e_2^2 / 2` along its axes, so `e_i = sqrt(2 lambda_i)`.
+  They need not be exact: the fit moves and reshapes the region after the split.
+- <b>Strip</b>: half-width `r = 0.2 min(e_1, e_2)`.
+- <b>In the chart</b>: on a disk chart the ellipse and its strip must lie in
+  the chart (the design notes' deviation from A.2.1): the ellipse shrinks
+  (down to a quarter of its size) and then, if that is not enough, the
+  centre moves toward the chart's centre, until `|centre| + max(e_1, e_2) + r`
+  is at most 97 % of the chart's radius.
+
+`Blended_shape::split()` gives the inside of the ellipse to the new component.
+
+\throws std::out_of_range if there is no such boundary.
+*/
+template <class GeomTraits>
+std::optional<Split_proposal> propose_split(const Force_regions<GeomTraits>& regions, std::size_t boundary = 0)
+{
+  const auto& boundaries = regions.boundaries();
+  if(boundary >= boundaries.size())
+    throw std::out_of_range("propose_split: no boundary " + std::to_string(boundary) + " (there are " +
+                            std::to_string(boundaries.size()) + ")");
+  const auto& b = boundaries[boundary];
+  const auto& domain = regions.domain();
+  const auto& region_pair = regions.regions();
+  const std::size_t part = region_pair[b.regions[0]].area <= region_pair[b.regions[1]].area ? b.regions[0] : b.regions[1];
+
+  // The centre: the part's node nearest to its mean position.
+  Eigen::Vector3d mean = Eigen::Vector3d::Zero();
+  double area = 0.;
+  for(std::size_t v : region_pair[part].nodes)
+  {
+    mean += regions.node_area(v) * internal::to_eigen(domain.node(v).position);
+    area += regions.node_area(v);
+  }
+  if(!(area > 0.))
+    return std::nullopt;
+  mean /= area;
+  std::size_t middle = region_pair[part].nodes.front();
+  for(std::size_t v : region_pair[part].nodes)
+    if((internal::to_eigen(domain.node(v).position) - mean).squaredNorm() <
+       (internal::to_eigen(domain.node(middle).position) - mean).squaredNorm())
+      middle = v;
+  const Shape_point centre_point = domain.node(middle).canonical;
+  const auto& primitive = domain.shape().component(centre_point.component).shape();
+  const std::size_t chart = centre_point.u.chart;
+  Eigen::Vector2d centre(centre_point.u.x, centre_point.u.y);
+
+  // The second moments of the curve about the centre.
+  auto in_chart = [&](std::size_t v, Eigen::Vector2d& x) {
+    const Shape_point& c = domain.node(v).canonical;
+    Chart_point q;
+    if(c.component != centre_point.component || !primitive.to_chart(c.u, chart, q))
+      return false;
+    x = Eigen::Vector2d(q.x, q.y);
+    return true;
+  };
+  Eigen::Matrix2d moments = Eigen::Matrix2d::Zero();
+  std::size_t count = 0;
+  for(const auto& e : b.edges)
+  {
+    Eigen::Vector2d x0, x1;
+    if(!in_chart(e[0], x0) || !in_chart(e[1], x1))
+      continue;
+    const Eigen::Vector2d d = 0.5 * (x0 + x1) - centre;
+    moments += d * d.transpose();
+    ++count;
+  }
+  if(count < 3)
+    return std::nullopt;
+  moments /= double(count);
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> eigen(moments); // eigenvalues increasing
+  double e1 = std::sqrt(2. * (std::max)(eigen.eigenvalues()[1], 0.));
+  double e2 = std::sqrt(2. * (std::max)(eigen.eigenvalues()[0], 0.));
+  if(!(e2 > 0.))
+    return std::nullopt;
+  const Eigen::Vector2d major = eigen.eigenvectors().col(1);
+  const double angle = std::atan2(major.y(), major.x());
+
+  const Chart_domain chart_domain = primitive.chart_domain(chart);
+  if(chart_domain.kind == Chart_kind::Disk)
+  {
+    const double room = 0.97 * chart_domain.radius;
+    const double reach = 1.2 * e1; // max(e_1, e_2) + r, with r = 0.2 e_2 <= 0.2 e_1
+    const double scale = std::clamp((room - centre.norm()) / reach, 0.25, 1.);
+    e1 *= scale;
+    e2 *= scale;
+    const double distance = room - 1.2 * e1;
+    if(!(distance > 0.))
+      return std::nullopt;
+    if(centre.norm() > distance)
+      centre *= distance / centre.norm();
+  }
+
+  Split_proposal p;
+  p.boundary = boundary;
+  p.component = centre_point.component;
+  p.chart = chart;
+  p.region = Ellipse_blending_region::make_parameters(centre.x(), centre.y(), e1, e2, angle, 1., 0.);
+  p.half_width = 0.2 * e2;
+  p.new_part_region = part;
+  return p;
+}
+
+/// \ingroup PkgBlendedShapeEvolution
+/// `model` split as `proposal` says (Blended_shape::split(), `h = 0`): the
+/// same surface, with one more component and one more blend.
+/// \throws std::invalid_argument if the split is refused (the region leaves
+///         the chart or meets another blend's region); the message says why.
+template <class GeomTraits>
+Deformable_blended_model<GeomTraits> apply_split(const Deformable_blended_model<GeomTraits>& model,
+                                                 const Split_proposal& proposal)
+{
+  Blended_shape<GeomTraits> shape = model.shape();
+  try
+  {
+    shape.split(proposal.component, proposal.chart, proposal.region, proposal.half_width);
+  }
+  catch(const std::invalid_argument& e)
+  {
+    throw std::invalid_argument(std::string("apply_split: the proposed split is refused: ") + e.what());
+  }
+  return Deformable_blended_model<GeomTraits>(shape, model.translation(), model.quaternion());
+}
+
+} // namespace Blended_shapes
+} // namespace CGAL
+
+#endif // CGAL_BLENDED_SHAPE_EVOLUTION_SPLIT_PROPOSAL_H

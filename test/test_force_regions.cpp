@@ -1,0 +1,353 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
+// The force analysis of sec. 5.4 (eq. 12, 13, Fig. 16) and the split it
+// proposes. On the unit sphere pulled by forces F = x (known flux: +-pi over
+// the half spheres, whose boundary crosses the chart seam twice): the
+// regions, their fluxes against a sum over the faces and against the
+// integral, the areas, the measured noise, the interpolation weights. On a
+// body with a part sticking out (inside one chart, and across the chart
+// seam) fitted by one superquadric: the best boundary goes around the part's
+// base, the split there has its region's centre on the part's axis and the
+// part inside, moves no point, and fitting on explains the part. Bad input.
+// Both supported kernels.
+#include "test_util.h"
+
+#include <CGAL/Blended_shape/Blending/Blended_shape.h>
+#include <CGAL/Blended_shape/Blending/Blended_shape_mesh.h>
+#include <CGAL/Blended_shape/Blending/Quotient_domain.h>
+#include <CGAL/Blended_shape/Evolution/Force_regions.h>
+#include <CGAL/Blended_shape/Evolution/Split_proposal.h>
+#include <CGAL/Blended_shape/Fitting/Deformable_blended_model.h>
+#include <CGAL/Blended_shape/Fitting/Deformable_model.h>
+#include <CGAL/Blended_shape/Fitting/Deformable_model_fitter.h>
+#include <CGAL/Blended_shape/Fitting/sample_model.h>
+#include <CGAL/Blended_shape/Primitives/Superquadric_ellipsoid.h>
+
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Simple_cartesian.h>
+
+#include <Eigen/Geometry>
+
+#include <cmath>
+#include <iostream>
+#include <random>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace BS = CGAL::Blended_shapes;
+
+namespace {
+
+#ifdef BLENDED_SHAPE_REDUCED_TESTS
+constexpr bool reduced = true; // sanitizer builds: the same checks on fewer points
+#else
+constexpr bool reduced = false;
+#endif
+
+const int resolution = 16;
+
+template <class K>
+Eigen::Vector3d eig(const typename K::Point_3& p)
+{
+  return Eigen::Vector3d(CGAL::to_double(p.x()), CGAL::to_double(p.y()), CGAL::to_double(p.z()));
+}
+
+// Forces on the unit sphere at random chart points: normal distance x + noise.
+template <class K>
+std::vector<BS::Normal_force> sphere_forces(const BS::Blended_shape<K>& sphere, std::size_t n, double noise)
+{
+  std::mt19937_64 rng(7);
+  std::uniform_real_distribution<double> u(-1., 1.);
+  std::normal_distribution<double> g(0., noise);
+  std::vector<BS::Normal_force> forces;
+  while(forces.size() < n)
+  {
+    const double x = u(rng), y = u(rng);
+    if(x * x + y * y > 1.)
+      continue;
+    const BS::Shape_point p(0, BS::Chart_point(forces.size() % 2, x, y));
+    forces.push_back(BS::Normal_force{p, eig<K>(sphere.point(p)).x() + g(rng), 1.});
+  }
+  return forces;
+}
+
+template <class K>
+void test_sphere()
+{
+  const BS::Blended_shape<K> sphere(BS::Superquadric_ellipsoid<K>(1., 1., 1., 1., 1.));
+  const BS::Blended_shape_pieces<K> pieces(sphere, resolution);
+  const BS::Quotient_domain<K> domain(sphere, pieces, 1);
+  const double noise = 0.01;
+  const BS::Force_regions<K> regions(domain, sphere_forces<K>(sphere, reduced ? 8000 : 30000, noise));
+
+  // Interpolation weights: non-negative, summing to 1, reproducing the surface within an edge.
+  for(const BS::Normal_force& f : sphere_forces<K>(sphere, 200, 0.01))
+  {
+    const auto w = domain.interpolation_weights(f.point);
+    double sum = 0.;
+    Eigen::Vector3d x = Eigen::Vector3d::Zero();
+    for(std::size_t k = 0; k < w.count; ++k)
+    {
+      BS_CHECK(w.weights[k] >= 0., "negative interpolation weight");
+      sum += w.weights[k];
+      x += w.weights[k] * eig<K>(domain.node(w.nodes[k]).position);
+    }
+    BS_CHECK(w.count > 0 && std::abs(sum - 1.) < 1e-12, w.count << " weights adding up to " << sum);
+    BS_CHECK((x - eig<K>(sphere.point(f.point))).norm() < domain.max_edge_length(),
+             "the interpolated position is " << (x - eig<K>(sphere.point(f.point))).norm() << " from the point");
+  }
+
+  double area = 0.;
+  for(std::size_t v = 0; v < domain.number_of_nodes(); ++v)
+    area += regions.node_area(v);
+  BS_CHECK(std::abs(area - 4. * M_PI) < 0.02 * 4. * M_PI, "the nodes' areas add up to " << area << ", not 4 pi");
+  BS_CHECK(std::abs(regions.noise() - noise) < 0.15 * noise,
+           "measured noise " << regions.noise() << " for " << noise);
+
+  // Two regions: x > 0 and x < 0, each across both charts (the seam is the equator).
+  const auto& R = regions.regions();
+  BS_CHECK(R.size() == 2, R.size() << " regions instead of 2");
+  for(const auto& r : R)
+  {
+    BS_CHECK(std::abs(r.flux - r.sign * M_PI) < 0.03 * M_PI, "flux " << r.flux << " of a region of sign " << r.sign
+                                                                     << ", not " << r.sign << " pi");
+    BS_CHECK(std::abs(r.area - 2. * M_PI) < 0.03 * 2. * M_PI, "area " << r.area << " of a half sphere");
+    bool both_charts[2] = {false, false};
+    for(std::size_t v : r.nodes)
+    {
+      both_charts[domain.node(v).canonical.u.chart] = true;
+      const double x = eig<K>(domain.node(v).position).x();
+      BS_CHECK(r.sign * x > -0.1, "node at x = " << x << " in the region of sign " << r.sign);
+    }
+    BS_CHECK(both_charts[0] && both_charts[1], "a half sphere's region is in one chart only");
+  }
+
+  // Eq. 13 against a sum over the faces: F interpolated linearly over each
+  // face whose centroid is canonically in its own chart, a third of the
+  // area to each corner on the surface, added to the corner's region.
+  std::vector<double> flux(R.size(), 0.);
+  for(std::size_t k = 0; k < pieces.pieces().size(); ++k)
+  {
+    const auto& cm = pieces.pieces()[k].mesh;
+    for(auto f : cm.mesh().faces())
+    {
+      const auto corners = cm.face_vertices(f);
+      const auto centre = sphere.canonical_point(
+        BS::Shape_point(0, sphere.component(0).shape().canonical_chart_point(cm.chart_point(f, {{1. / 3, 1. / 3, 1. / 3}}))));
+      if(!centre || centre->u.chart != cm.chart_index())
+        continue;
+      const Eigen::Vector3d p0 = eig<K>(cm.mesh().point(corners[0])), p1 = eig<K>(cm.mesh().point(corners[1])),
+                            p2 = eig<K>(cm.mesh().point(corners[2]));
+      const double a = 0.5 * (p1 - p0).cross(p2 - p0).norm();
+      for(auto c : corners)
+      {
+        const std::size_t v = domain.node_of(k, c);
+        flux[regions.node_region(v)] += a / 3. * regions.node_force(v);
+      }
+    }
+  }
+  for(std::size_t i = 0; i < R.size(); ++i)
+    BS_CHECK(std::abs(flux[i] - R[i].flux) <= 1e-12 * std::abs(R[i].flux),
+             "region " << i << ": flux " << R[i].flux << ", sum over the faces " << flux[i]);
+
+  // One boundary: the great circle x = 0.
+  BS_CHECK(regions.boundaries().size() == 1, regions.boundaries().size() << " boundaries instead of 1");
+  if(const auto* b = regions.best_boundary())
+  {
+    BS_CHECK(b->centroid.norm() < 0.05, "boundary centroid " << b->centroid.transpose());
+    BS_CHECK(R[b->regions[0]].sign == 1 && R[b->regions[1]].sign == -1, "the outward region is not first");
+    BS_CHECK(std::abs(b->flux_difference - 2. * M_PI) < 0.03 * 2. * M_PI, "flux difference " << b->flux_difference);
+    for(const auto& e : b->edges)
+      for(std::size_t v : e)
+        BS_CHECK(std::abs(eig<K>(domain.node(v).position).x()) < 0.25, "boundary node far from x = 0");
+  }
+  std::cout << "  sphere: area " << area << " (4 pi = " << 4. * M_PI << "), noise " << regions.noise()
+            << ", fluxes " << R[0].flux << " " << (R.size() > 1 ? R[1].flux : 0.) << " (+-pi)" << std::endl;
+}
+
+// Whether p (in space) is inside the superellipsoid `m` (its inside-outside function below 1).
+template <class Model>
+bool inside(const Model& m, const Eigen::Vector3d& p)
+{
+  const Eigen::Quaterniond q(m.quaternion()[0], m.quaternion()[1], m.quaternion()[2], m.quaternion()[3]);
+  const Eigen::Vector3d x = q.conjugate() * (p - m.translation());
+  const auto a = m.shape().parameters();
+  const double xy = std::pow(std::pow(std::abs(x[0] / a[0]), 2. / a[4]) + std::pow(std::abs(x[1] / a[1]), 2. / a[4]),
+                             a[4] / a[3]);
+  return xy + std::pow(std::abs(x[2] / a[2]), 2. / a[3]) < 1.;
+}
+
+// A body (an ellipsoid) with a round part sticking out along `axis` from the
+// body's surface point `foot` (the true region's centre; the part's width
+// is its size): noisy samples of the union's surface.
+template <class K>
+void test_protruding_part(const std::string& name, const Eigen::Vector3d& body_axes, const Eigen::Vector3d& foot,
+                          const Eigen::Vector4d& rotation, const Eigen::Vector3d& axis, bool explains_part)
+{
+  typedef BS::Deformable_model<BS::Superquadric_ellipsoid<K>> Primitive_model;
+  const double radius = 0.3;
+  const Primitive_model body(BS::Superquadric_ellipsoid<K>(body_axes[0], body_axes[1], body_axes[2], 1., 1.));
+  const Primitive_model part(BS::Superquadric_ellipsoid<K>(radius, radius, 0.5, 0.4, 1.), foot + 0.3 * axis, rotation);
+  const std::size_t n = reduced ? 3000 : 8000;
+  std::vector<typename K::Point_3> points;
+  std::mt19937_64 rng(11);
+  const double noise = 0.006; // 0.2 % of the body's diagonal, about 3
+  std::normal_distribution<double> g(0., noise);
+  for(const auto* m : {&body, &part})
+  {
+    const Primitive_model& other = (m == &body) ? part : body;
+    for(const auto& s : BS::sample_model_surface(*m, n, 5))
+    {
+      const Eigen::Vector3d p = eig<K>(s.point);
+      if(!inside(other, p))
+        points.emplace_back(p.x() + g(rng), p.y() + g(rng), p.z() + g(rng));
+    }
+  }
+  // One superquadric, fitted robustly (the default) from the body itself, so
+  // that its frame stays the body's: it comes to rest on the body and takes
+  // the part's points for strays. They pull all the same (weight 1), and the
+  // equilibrated rest of the body stays a region of its own.
+  typedef BS::Deformable_blended_model<K> Model;
+  BS::Deformable_model_fitter<Model> fitter(points, Model(BS::Blended_shape<K>(body.shape())));
+  const BS::Fitting_status status = fitter.run();
+  const Model& model = fitter.model();
+  const BS::Blended_shape_pieces<K> pieces(model.shape(), resolution);
+  const BS::Quotient_domain<K> domain(model.shape(), pieces, 1);
+  const BS::Force_regions<K> regions(domain, BS::normal_forces(fitter, false),
+                                     BS::Force_regions<K>::default_threshold_factor, BS::Equilibrated_regions::Kept);
+
+  // The best boundary goes around the part's base: its centroid within a
+  // quarter of the part's width of the part's axis, and within the part's
+  // width of the body's surface along it.
+  const auto* best = regions.best_boundary();
+  BS_CHECK(best != nullptr, name << ": no boundary");
+  if(best == nullptr)
+    return;
+  const Eigen::Vector3d centroid = model.translation() + model.rotation() * best->centroid;
+  const double centroid_along = (centroid - foot).dot(axis);
+  const double centroid_off = ((centroid - foot) - centroid_along * axis).norm();
+  BS_CHECK(centroid_off <= 0.25 * 2. * radius && std::abs(centroid_along) <= 2. * radius,
+           name << ": the best boundary's centroid " << centroid.transpose() << " is " << centroid_off
+                << " from the part's axis and " << centroid_along << " along it from the body");
+  std::cout << "  " << name << ": " << points.size() << " points, rest after " << status.iterations
+            << " iterations, noise " << regions.noise() << ", " << regions.regions().size() << " regions, "
+            << regions.boundaries().size() << " boundaries; the best one " << centroid_off
+            << " from the part's axis" << std::endl;
+
+  // The split there: its region's centre within a quarter of the part's
+  // width of the part's axis, the part's side inside it, no point moved.
+  const std::optional<BS::Split_proposal> proposal = BS::propose_split(regions);
+  BS_CHECK(bool(proposal), name << ": no split proposed along the part's base");
+  if(!proposal)
+    return;
+  const Model split = BS::apply_split(model, *proposal);
+  const BS::Chart_point centre(proposal->chart, proposal->region[0], proposal->region[1]);
+  const Eigen::Vector3d x = eig<K>(model.point(model.chart_point(BS::Shape_point(proposal->component, centre))));
+  const double along = (x - foot).dot(axis), off = ((x - foot) - along * axis).norm();
+  BS_CHECK(off <= 0.25 * 2. * radius, name << ": the split region's centre " << x.transpose() << " is " << off
+                                            << " from the part's axis");
+  auto mean_along_axis = [&](std::size_t region) {
+    double sum = 0.;
+    for(std::size_t v : regions.regions()[region].nodes)
+      sum += (model.translation() + model.rotation() * eig<K>(domain.node(v).position) - foot).dot(axis);
+    return sum / double(regions.regions()[region].nodes.size());
+  };
+  const auto& b = *best;
+  const std::size_t other = b.regions[0] == proposal->new_part_region ? b.regions[1] : b.regions[0];
+  BS_CHECK(mean_along_axis(proposal->new_part_region) > mean_along_axis(other),
+           name << ": the new part's side is not the part's");
+  double moved = 0.;
+  for(std::size_t g = 0; g < model.number_of_charts(); ++g)
+  {
+    const BS::Chart_mesh<K> mesh(g, model.chart_domain(g), resolution);
+    for(auto v : mesh.mesh().vertices())
+      moved = (std::max)(moved, (eig<K>(model.point(mesh.chart_point(v))) - eig<K>(split.point(mesh.chart_point(v)))).norm());
+  }
+  BS_CHECK(moved <= 1e-12, name << ": the split moved a point by " << moved);
+
+  // Fitting on from the split: where the region could be given its size
+  // (`explains_part`), the new part takes the part's points, and the mean
+  // squared distance of all points comes down to the noise's. (Across the
+  // seam the chart's margin shrinks the region to a sliver, and the robust
+  // fit does not pull the part's points in: see the manual.)
+  const double before = fitter.mean_squared_distance(true);
+  fitter.restructure(split);
+  fitter.run();
+  const double after = fitter.mean_squared_distance(true);
+  if(explains_part)
+    BS_CHECK(after < 3. * noise * noise,
+             name << ": the mean squared distance went from " << before << " to " << after << ", not below "
+                  << 3. * noise * noise);
+  std::cout << "    split: region " << proposal->region.head<5>().transpose() << " in chart " << proposal->chart
+            << ", centre " << off << " from the axis, points moved " << moved << ", mean squared distance " << before
+            << " -> " << after << std::endl;
+}
+
+template <class K>
+void test_bad_input()
+{
+  const BS::Blended_shape<K> sphere(BS::Superquadric_ellipsoid<K>(1., 1., 1., 1., 1.));
+  const BS::Blended_shape_pieces<K> pieces(sphere, 8);
+  const BS::Quotient_domain<K> domain(sphere, pieces, 1);
+  const std::vector<BS::Normal_force> good = sphere_forces<K>(sphere, 200, 0.01);
+  auto refused = [&](const std::vector<BS::Normal_force>& forces, double factor, const std::string& expected) {
+    try
+    {
+      BS::Force_regions<K> r(domain, forces, factor);
+    }
+    catch(const std::invalid_argument& e)
+    {
+      BS_CHECK(std::string(e.what()).find(expected) != std::string::npos,
+               "message \"" << e.what() << "\" does not say \"" << expected << "\"");
+      return;
+    }
+    BS_CHECK(false, "accepted: expected an error saying \"" << expected << "\"");
+  };
+  refused({}, 3., "no forces");
+  refused(good, -1., "threshold_factor");
+  refused(good, std::nan(""), "threshold_factor");
+  for(int kind = 0; kind < 4; ++kind)
+  {
+    std::vector<BS::Normal_force> bad = good;
+    BS::Normal_force& f = bad[17];
+    if(kind == 0)
+      f.normal_distance = std::nan("");
+    else if(kind == 1)
+      f.weight = -0.5;
+    else if(kind == 2)
+      f.point.u.chart = 5;
+    else
+      f.point.u.x = 3.;
+    refused(bad, 3., "force 17");
+  }
+}
+
+template <class K>
+void run(const char* kernel)
+{
+  std::cout << "kernel " << kernel << std::endl;
+  const int before = blended_shape_test::failures();
+  test_sphere<K>();
+  // the part along -z from the south pole of a round body: the fit's long
+  // axis goes through the part, which is inside one chart
+  test_protruding_part<K>("part at the pole", Eigen::Vector3d(1., 0.9, 0.8), Eigen::Vector3d(0., 0., -0.8),
+                          Eigen::Vector4d(0., 1., 0., 0.), Eigen::Vector3d(0., 0., -1.), true);
+  // the part along +x from the equator of a body long in z: the fit keeps
+  // its long axis in z, and the part is across the seam of the two charts
+  test_protruding_part<K>("part across the seam", Eigen::Vector3d(0.8, 0.7, 1.6), Eigen::Vector3d(0.8, 0., 0.),
+                          Eigen::Vector4d(std::sqrt(0.5), 0., std::sqrt(0.5), 0.), Eigen::Vector3d(1., 0., 0.),
+                          false);
+  test_bad_input<K>();
+  std::cout << "force regions with " << kernel << (blended_shape_test::failures() == before ? ": SUCCESS" : ": FAILED")
+            << std::endl;
+}
+
+} // namespace
+
+int main()
+{
+  run<CGAL::Exact_predicates_inexact_constructions_kernel>("Epick");
+  run<CGAL::Simple_cartesian<double>>("Simple_cartesian<double>");
+  blended_shape_test::report("test_force_regions");
+  return blended_shape_test::exit_code();
+}
