@@ -34,6 +34,84 @@ struct Split_proposal
   std::size_t new_part_region = 0; ///< the force region inside the ellipse: the side that becomes the new part
 };
 
+namespace internal {
+
+// The node of region `part` nearest to the region's mean position (weighted
+// by the nodes' areas); nothing for a region of no area.
+template <class GeomTraits>
+std::optional<std::size_t> middle_node(const Force_regions<GeomTraits>& regions, std::size_t part)
+{
+  const auto& nodes = regions.regions()[part].nodes;
+  const auto position = [&](std::size_t v) { return internal::to_eigen(regions.domain().node(v).position); };
+  Eigen::Vector3d mean = Eigen::Vector3d::Zero();
+  double area = 0.;
+  for(std::size_t v : nodes)
+  {
+    mean += regions.node_area(v) * position(v);
+    area += regions.node_area(v);
+  }
+  if(!(area > 0.))
+    return std::nullopt;
+  mean /= area;
+  std::size_t middle = nodes.front();
+  for(std::size_t v : nodes)
+    if((position(v) - mean).squaredNorm() < (position(middle) - mean).squaredNorm())
+      middle = v;
+  return middle;
+}
+
+// The second moments, about `centre`, of the midpoints of the boundary's
+// edges whose ends the centre's chart covers; nothing if fewer than three.
+template <class GeomTraits>
+std::optional<Eigen::Matrix2d> curve_moments(const Force_regions<GeomTraits>& regions,
+                                             const typename Force_regions<GeomTraits>::Boundary& b,
+                                             const Shape_point& centre)
+{
+  const auto& domain = regions.domain();
+  const auto& primitive = domain.shape().component(centre.component).shape();
+  auto in_chart = [&](std::size_t v, Eigen::Vector2d& x) {
+    const Shape_point& c = domain.node(v).canonical;
+    Chart_point q;
+    if(c.component != centre.component || !primitive.to_chart(c.u, centre.u.chart, q))
+      return false;
+    x = Eigen::Vector2d(q.x, q.y);
+    return true;
+  };
+  Eigen::Matrix2d moments = Eigen::Matrix2d::Zero();
+  std::size_t count = 0;
+  for(const auto& e : b.edges)
+  {
+    Eigen::Vector2d x0, x1;
+    if(!in_chart(e[0], x0) || !in_chart(e[1], x1))
+      continue;
+    const Eigen::Vector2d d = 0.5 * (x0 + x1) - Eigen::Vector2d(centre.u.x, centre.u.y);
+    moments += d * d.transpose();
+    ++count;
+  }
+  if(count < 3)
+    return std::nullopt;
+  return Eigen::Matrix2d(moments / double(count));
+}
+
+// Shrinks the ellipse (down to a quarter) and then moves its centre toward
+// the chart's centre until the ellipse and its strip (half-width 0.2 e2 <=
+// 0.2 e1) lie within 97 % of the disk chart's radius; false if they cannot.
+inline bool fit_into_disk(double radius, Eigen::Vector2d& centre, double& e1, double& e2)
+{
+  const double room = 0.97 * radius;
+  const double scale = std::clamp((room - centre.norm()) / (1.2 * e1), 0.25, 1.);
+  e1 *= scale;
+  e2 *= scale;
+  const double distance = room - 1.2 * e1;
+  if(!(distance > 0.))
+    return false;
+  if(centre.norm() > distance)
+    centre *= distance / centre.norm();
+  return true;
+}
+
+} // namespace internal
+
 /*!
 \ingroup PkgBlendedShapeEvolution
 
@@ -71,82 +149,33 @@ std::optional<Split_proposal> propose_split(const Force_regions<GeomTraits>& reg
     throw std::out_of_range("propose_split: no boundary " + std::to_string(boundary) + " (there are " +
                             std::to_string(boundaries.size()) + ")");
   const auto& b = boundaries[boundary];
-  const auto& domain = regions.domain();
-  const auto& region_pair = regions.regions();
-  const std::size_t part = region_pair[b.regions[0]].area <= region_pair[b.regions[1]].area ? b.regions[0] : b.regions[1];
-
-  // The centre: the part's node nearest to its mean position.
-  Eigen::Vector3d mean = Eigen::Vector3d::Zero();
-  double area = 0.;
-  for(std::size_t v : region_pair[part].nodes)
-  {
-    mean += regions.node_area(v) * internal::to_eigen(domain.node(v).position);
-    area += regions.node_area(v);
-  }
-  if(!(area > 0.))
+  const auto& all = regions.regions();
+  const std::size_t part = all[b.regions[0]].area <= all[b.regions[1]].area ? b.regions[0] : b.regions[1];
+  const std::optional<std::size_t> middle = internal::middle_node(regions, part);
+  if(!middle)
     return std::nullopt;
-  mean /= area;
-  std::size_t middle = region_pair[part].nodes.front();
-  for(std::size_t v : region_pair[part].nodes)
-    if((internal::to_eigen(domain.node(v).position) - mean).squaredNorm() <
-       (internal::to_eigen(domain.node(middle).position) - mean).squaredNorm())
-      middle = v;
-  const Shape_point centre_point = domain.node(middle).canonical;
-  const auto& primitive = domain.shape().component(centre_point.component).shape();
-  const std::size_t chart = centre_point.u.chart;
+  const Shape_point centre_point = regions.domain().node(*middle).canonical;
   Eigen::Vector2d centre(centre_point.u.x, centre_point.u.y);
-
-  // The second moments of the curve about the centre.
-  auto in_chart = [&](std::size_t v, Eigen::Vector2d& x) {
-    const Shape_point& c = domain.node(v).canonical;
-    Chart_point q;
-    if(c.component != centre_point.component || !primitive.to_chart(c.u, chart, q))
-      return false;
-    x = Eigen::Vector2d(q.x, q.y);
-    return true;
-  };
-  Eigen::Matrix2d moments = Eigen::Matrix2d::Zero();
-  std::size_t count = 0;
-  for(const auto& e : b.edges)
-  {
-    Eigen::Vector2d x0, x1;
-    if(!in_chart(e[0], x0) || !in_chart(e[1], x1))
-      continue;
-    const Eigen::Vector2d d = 0.5 * (x0 + x1) - centre;
-    moments += d * d.transpose();
-    ++count;
-  }
-  if(count < 3)
+  const std::optional<Eigen::Matrix2d> moments = internal::curve_moments(regions, b, centre_point);
+  if(!moments)
     return std::nullopt;
-  moments /= double(count);
-  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> eigen(moments); // eigenvalues increasing
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> eigen(*moments); // eigenvalues increasing
   double e1 = std::sqrt(2. * (std::max)(eigen.eigenvalues()[1], 0.));
   double e2 = std::sqrt(2. * (std::max)(eigen.eigenvalues()[0], 0.));
   if(!(e2 > 0.))
     return std::nullopt;
   const Eigen::Vector2d major = eigen.eigenvectors().col(1);
-  const double angle = std::atan2(major.y(), major.x());
-
-  const Chart_domain chart_domain = primitive.chart_domain(chart);
-  if(chart_domain.kind == Chart_kind::Disk)
-  {
-    const double room = 0.97 * chart_domain.radius;
-    const double reach = 1.2 * e1; // max(e_1, e_2) + r, with r = 0.2 e_2 <= 0.2 e_1
-    const double scale = std::clamp((room - centre.norm()) / reach, 0.25, 1.);
-    e1 *= scale;
-    e2 *= scale;
-    const double distance = room - 1.2 * e1;
-    if(!(distance > 0.))
-      return std::nullopt;
-    if(centre.norm() > distance)
-      centre *= distance / centre.norm();
-  }
+  const Chart_domain chart_domain =
+    regions.domain().shape().component(centre_point.component).shape().chart_domain(centre_point.u.chart);
+  if(chart_domain.kind == Chart_kind::Disk && !internal::fit_into_disk(chart_domain.radius, centre, e1, e2))
+    return std::nullopt;
 
   Split_proposal p;
   p.boundary = boundary;
   p.component = centre_point.component;
-  p.chart = chart;
-  p.region = Ellipse_blending_region::make_parameters(centre.x(), centre.y(), e1, e2, angle, 1., 0.);
+  p.chart = centre_point.u.chart;
+  p.region = Ellipse_blending_region::make_parameters(centre.x(), centre.y(), e1, e2,
+                                                      std::atan2(major.y(), major.x()), 1., 0.);
   p.half_width = 0.2 * e2;
   p.new_part_region = part;
   return p;
