@@ -369,7 +369,7 @@ public:
   coordinates of its canonical point in the face of the canonical chart's
   mesh that holds it, over the corners that are nodes (renormalized); weight
   1 on the nearest node if no corner is on the surface.
-  	hrows std::invalid_argument as topological_distance() does
+  \throws std::invalid_argument as topological_distance() does
   */
   Node_weights interpolation_weights(const Shape_point& p) const
   {
