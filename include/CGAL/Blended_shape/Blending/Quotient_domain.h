@@ -351,6 +351,9 @@ public:
     check_node(i);
     return m_adjacency[i];
   }
+  /// The index of the piece of `p`'s chart (of its component) in `pieces().pieces()`.
+  /// \pre `p` has a valid component and chart
+  std::size_t piece_of(const Shape_point& p) const { return m_first_piece[p.component] + p.u.chart; }
   /// The length of the longest edge of the quotient adjacency: the size of
   /// one ring, the additive error scale of the distances.
   double max_edge_length() const { return m_max_edge; }
@@ -509,8 +512,6 @@ private:
       throw std::invalid_argument("Quotient_domain: the pieces do not match the shape (one piece per chart of every "
                                   "component); call Blended_shape_pieces::update(shape) first");
   }
-
-  std::size_t piece_of(const Shape_point& p) const { return m_first_piece[p.component] + p.u.chart; }
 
   void build_nodes()
   {

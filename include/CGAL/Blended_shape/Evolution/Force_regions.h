@@ -427,8 +427,7 @@ private:
         const Chart_point centre =
           primitive.canonical_chart_point(chart_mesh.chart_point(f, {{1. / 3., 1. / 3., 1. / 3.}}));
         const std::optional<Shape_point> canonical = shape.canonical_point(Shape_point(pieces[k].component, centre));
-        if(!canonical || canonical->component != pieces[k].component ||
-           canonical->u.chart != chart_mesh.chart_index())
+        if(!canonical || m_domain.piece_of(*canonical) != k)
           continue; // off the surface, or counted in another chart
         const Eigen::Vector3d p0 = internal::to_eigen(mesh.point(corners[0]));
         const Eigen::Vector3d p1 = internal::to_eigen(mesh.point(corners[1]));
@@ -515,7 +514,7 @@ private:
       {
         const typename Domain::Node& node = m_domain.node(v);
         b.centroid += 0.5 * internal::to_eigen(node.position);
-        ++nodes_in_piece[piece_of(node.canonical)];
+        ++nodes_in_piece[m_domain.piece_of(node.canonical)];
       }
     b.centroid /= double(edges.size());
     b.piece = std::max_element(nodes_in_piece.begin(), nodes_in_piece.end(), [](const auto& x, const auto& y) {
@@ -523,15 +522,6 @@ private:
               })->first;
     b.edges = std::move(edges);
     return b;
-  }
-
-  std::size_t piece_of(const Shape_point& p) const
-  {
-    const auto& pieces = m_domain.pieces().pieces();
-    for(std::size_t k = 0; k < pieces.size(); ++k)
-      if(pieces[k].component == p.component && pieces[k].mesh.chart_index() == p.u.chart)
-        return k;
-    return pieces.size(); // not reached: canonical points are in a piece
   }
 
   const Domain& m_domain;
