@@ -307,6 +307,32 @@ void test_bad_input()
     }
     BS_CHECK(false, "accepted: expected an error saying \"" << expected << "\"");
   };
+  // a split along a boundary that does not exist, and a split the shape refuses
+  const BS::Force_regions<K> regions(domain, good);
+  bool out_of_range = false;
+  try
+  {
+    BS::propose_split(regions, regions.boundaries().size());
+  }
+  catch(const std::out_of_range& e)
+  {
+    out_of_range = std::string(e.what()).find("no boundary") != std::string::npos;
+  }
+  BS_CHECK(out_of_range, "propose_split() of a boundary that does not exist: no clear std::out_of_range");
+  BS::Split_proposal outside;
+  outside.region = BS::Ellipse_blending_region::make_parameters(5., 0., 0.3, 0.3, 0.);
+  outside.half_width = 0.05;
+  bool refused_split = false;
+  try
+  {
+    BS::apply_split(BS::Deformable_blended_model<K>(sphere), outside);
+  }
+  catch(const std::invalid_argument& e)
+  {
+    refused_split = std::string(e.what()).find("apply_split: the proposed split is refused") != std::string::npos;
+  }
+  BS_CHECK(refused_split, "apply_split() of a region outside its chart: no clear error");
+
   refused({}, 3., "no forces");
   refused(good, -1., "threshold_factor");
   refused(good, std::nan(""), "threshold_factor");
