@@ -3,8 +3,14 @@
 // brute force, energy decrease at fixed correspondences for both
 // integrators, recovery of random superellipsoids, equivariance,
 // determinism, abort, bad input, and the settings read from named
-// parameters.
+// parameters. The same program runs the fits at any scale and place
+// (fitting_scale_checks.h) and among stray points (stray_point_checks.h):
+// one compilation of the fitter for the three, run by CTest as three tests
+// (`test_fitting basic`, `test_fitting scale`, `test_fitting strays`).
+#include "test_kernels.h"
 #include "test_util.h"
+#include "fitting_scale_checks.h"
+#include "stray_point_checks.h"
 
 #include <CGAL/Blended_shape/Fitting/fit_superquadric.h>
 #include <CGAL/Blended_shape/Primitives/check_primitive.h>
@@ -433,13 +439,28 @@ void run(const char* kernel, bool full)
 
 } // namespace
 
-int main()
+int main(int argc, char** argv)
 {
-  test_settings_from_named_parameters();
-  run<CGAL::Exact_predicates_inexact_constructions_kernel>("Epick", true);
-#ifndef BLENDED_SHAPE_ONE_KERNEL // sanitizer builds: Epick only (see test/CMakeLists.txt)
-  run<CGAL::Simple_cartesian<double>>("Simple_cartesian<double>", false);
-#endif
-  blended_shape_test::report("test_fitting");
+  const std::string part = argc > 1 ? argv[1] : "all";
+  if(argc > 2 || (part != "all" && part != "basic" && part != "scale" && part != "strays"))
+  {
+    std::cerr << "usage: test_fitting [all|basic|scale|strays]" << std::endl;
+    return EXIT_FAILURE;
+  }
+  if(part == "all" || part == "basic")
+  {
+    test_settings_from_named_parameters();
+    // the full set of cases with the first kernel (Epick), a smaller one with the others
+    bool first = true;
+    blended_shape_test::for_each_kernel([&](auto kernel, const char* name) {
+      run<decltype(kernel)>(name, first);
+      first = false;
+    });
+  }
+  if(part == "all" || part == "scale")
+    fitting_scale_checks::run_all();
+  if(part == "all" || part == "strays")
+    stray_point_checks::run_all();
+  blended_shape_test::report("test_fitting " + part);
   return blended_shape_test::exit_code();
 }

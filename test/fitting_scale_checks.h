@@ -4,6 +4,11 @@
 // the input by 1e-9 or 1e9, or moving it by 1e15, scales and moves the fit
 // and keeps its relative figures; 1e-12 and 1e12 work, chamfer distances and
 // meshes included; coordinates whose squares overflow are refused first.
+#ifndef BLENDED_SHAPE_FITTING_SCALE_CHECKS_H
+#define BLENDED_SHAPE_FITTING_SCALE_CHECKS_H
+// Part of test_fitting (one program, one compilation of the fitter; CTest
+// runs it as `test_fitting scale`).
+#include "test_kernels.h"
 #include "test_util.h"
 
 #include <CGAL/Blended_shape/Fitting/fit_superquadric.h>
@@ -23,9 +28,9 @@
 #include <random>
 #include <sstream>
 
-namespace BS = CGAL::Blended_shapes;
+namespace fitting_scale_checks {
 
-namespace {
+namespace BS = CGAL::Blended_shapes;
 
 // Points per synthetic cloud: fewer in sanitizer builds (same code paths).
 #ifdef BLENDED_SHAPE_REDUCED_TESTS
@@ -268,15 +273,12 @@ void run(const char* kernel)
   std::cout << kernel << ": " << blended_shape_test::failures() - before << " failed checks" << std::endl;
 }
 
-} // namespace
-
-int main()
+inline void run_all()
 {
   std::cout << "Fits at any scale and place; relative RMS of the moved copies, and seconds per test:\n";
-  run<CGAL::Exact_predicates_inexact_constructions_kernel>("Epick");
-#ifndef BLENDED_SHAPE_ONE_KERNEL // sanitizer builds: Epick only (see test/CMakeLists.txt)
-  run<CGAL::Simple_cartesian<double>>("Simple_cartesian<double>");
-#endif
-  blended_shape_test::report("test_fitting_scale");
-  return blended_shape_test::exit_code();
+  blended_shape_test::for_each_kernel([](auto kernel, const char* name) { run<decltype(kernel)>(name); });
 }
+
+} // namespace fitting_scale_checks
+
+#endif

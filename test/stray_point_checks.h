@@ -6,6 +6,11 @@
 // rest state (benchmark/fit_single_superquadric --outliers 0.4
 // --outlier-box 2, see the manual): that case is fitted and its figures
 // printed, but only the report of the strays is asserted.
+#ifndef BLENDED_SHAPE_STRAY_POINT_CHECKS_H
+#define BLENDED_SHAPE_STRAY_POINT_CHECKS_H
+// Part of test_fitting (one program, one compilation of the fitter; CTest
+// runs it as `test_fitting strays`).
+#include "test_kernels.h"
 #include "test_util.h"
 
 #include <CGAL/Blended_shape/Fitting/fit_superquadric.h>
@@ -20,9 +25,9 @@
 #include <random>
 #include <sstream>
 
-namespace BS = CGAL::Blended_shapes;
+namespace stray_point_checks {
 
-namespace {
+namespace BS = CGAL::Blended_shapes;
 
 #ifdef BLENDED_SHAPE_REDUCED_TESTS
 constexpr std::size_t cloud_size = 1500; // sanitizer builds: fewer points
@@ -82,14 +87,11 @@ void run(const char* kernel)
             << std::endl;
 }
 
-} // namespace
-
-int main()
+inline void run_all()
 {
-  run<CGAL::Exact_predicates_inexact_constructions_kernel>("Epick");
-#ifndef BLENDED_SHAPE_ONE_KERNEL // sanitizer builds: Epick only (see test/CMakeLists.txt)
-  run<CGAL::Simple_cartesian<double>>("Simple_cartesian<double>");
-#endif
-  blended_shape_test::report("test_stray_points");
-  return blended_shape_test::exit_code();
+  blended_shape_test::for_each_kernel([](auto kernel, const char* name) { run<decltype(kernel)>(name); });
 }
+
+} // namespace stray_point_checks
+
+#endif
