@@ -6,5 +6,7 @@
 #define CGAL_BLENDED_SHAPE_EVOLUTION_H
 
 #include <CGAL/Blended_shape/Evolution/Force_regions.h>
+#include <CGAL/Blended_shape/Evolution/Part_evolution.h>
+#include <CGAL/Blended_shape/Evolution/Split_proposal.h>
 
 #endif // CGAL_BLENDED_SHAPE_EVOLUTION_H

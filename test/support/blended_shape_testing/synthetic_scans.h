@@ -7,6 +7,7 @@
 #include <CGAL/Blended_shape/Fitting/sample_model.h>
 
 #include <CGAL/Bbox_3.h>
+#include <Eigen/Geometry>
 
 #include <cmath>
 #include <random>
@@ -91,6 +92,21 @@ void add_stray_points(std::vector<Point_3>& pts, std::size_t count, double box_f
     const double x = c[0] + size[0] * unit(rng), y = c[1] + size[1] * unit(rng), z = c[2] + size[2] * unit(rng);
     pts.emplace_back(x, y, z);
   }
+}
+
+// Whether `p` (in space) is inside the placed superellipsoid `m` (a
+// Deformable_model of a Superquadric_ellipsoid): its inside-outside
+// function below 1. For scenes of several superquadrics, whose union's
+// surface is the samples of each outside the others.
+template <class Model>
+bool is_inside(const Model& m, const Eigen::Vector3d& p)
+{
+  const Eigen::Quaterniond q(m.quaternion()[0], m.quaternion()[1], m.quaternion()[2], m.quaternion()[3]);
+  const Eigen::Vector3d x = q.conjugate() * (p - m.translation());
+  const auto a = m.shape().parameters();
+  const double xy = std::pow(std::pow(std::abs(x[0] / a[0]), 2. / a[4]) + std::pow(std::abs(x[1] / a[1]), 2. / a[4]),
+                             a[4] / a[3]);
+  return xy + std::pow(std::abs(x[2] / a[2]), 2. / a[3]) < 1.;
 }
 
 } // namespace testing

@@ -8,14 +8,23 @@
 // seam) fitted by one superquadric: the best boundary goes around the part's
 // base, the split there has its region's centre on the part's axis and the
 // part inside, moves no point, and fitting on explains the part. Bad input.
-// Both supported kernels.
+// Part evolution (Part_evolution): single superquadrics stay one part, an
+// undone split restores the model bit for bit, the visitor hears of every
+// event, the abort callback and the part limit leave a valid model, bad
+// settings are refused. Both supported kernels. CTest runs the force
+// analysis as `test_evolution regions`, part evolution as `test_evolution parts`.
+#include "test_kernels.h"
 #include "test_util.h"
 
 #include <CGAL/Blended_shape/Blending/Blended_shape.h>
 #include <CGAL/Blended_shape/Blending/Blended_shape_mesh.h>
 #include <CGAL/Blended_shape/Blending/Quotient_domain.h>
 #include <CGAL/Blended_shape/Evolution/Force_regions.h>
+#include <CGAL/Blended_shape/Evolution/Part_evolution.h>
 #include <CGAL/Blended_shape/Evolution/Split_proposal.h>
+#include <CGAL/Blended_shape/Fitting/fit_superquadric.h>
+#include <blended_shape_testing/same_bits.h>
+#include <blended_shape_testing/synthetic_scans.h>
 #include <CGAL/Blended_shape/Fitting/Deformable_blended_model.h>
 #include <CGAL/Blended_shape/Fitting/Deformable_model.h>
 #include <CGAL/Blended_shape/Fitting/Deformable_model_fitter.h>
@@ -167,18 +176,6 @@ void test_sphere()
             << ", fluxes " << R[0].flux << " " << (R.size() > 1 ? R[1].flux : 0.) << " (+-pi)" << std::endl;
 }
 
-// Whether p (in space) is inside the superellipsoid `m` (its inside-outside function below 1).
-template <class Model>
-bool inside(const Model& m, const Eigen::Vector3d& p)
-{
-  const Eigen::Quaterniond q(m.quaternion()[0], m.quaternion()[1], m.quaternion()[2], m.quaternion()[3]);
-  const Eigen::Vector3d x = q.conjugate() * (p - m.translation());
-  const auto a = m.shape().parameters();
-  const double xy = std::pow(std::pow(std::abs(x[0] / a[0]), 2. / a[4]) + std::pow(std::abs(x[1] / a[1]), 2. / a[4]),
-                             a[4] / a[3]);
-  return xy + std::pow(std::abs(x[2] / a[2]), 2. / a[3]) < 1.;
-}
-
 // A body (an ellipsoid) with a round part sticking out along `axis` from the
 // body's surface point `foot` (the true region's centre; the part's width
 // is its size): noisy samples of the union's surface.
@@ -201,7 +198,7 @@ void test_protruding_part(const std::string& name, const Eigen::Vector3d& body_a
     for(const auto& s : BS::sample_model_surface(*m, n, 5))
     {
       const Eigen::Vector3d p = eig<K>(s.point);
-      if(!inside(other, p))
+      if(!BS::testing::is_inside(other, p))
         points.emplace_back(p.x() + g(rng), p.y() + g(rng), p.z() + g(rng));
     }
   }
@@ -352,8 +349,150 @@ void test_bad_input()
   }
 }
 
+// Counts the evolution events it hears of.
+struct Counting_visitor : BS::Default_evolution_visitor
+{
+  std::size_t splits = 0, undos = 0;
+  void on_split(const BS::Evolution_event& e) { splits += e.accepted() ? 1 : 1000; }
+  void on_undo(const BS::Evolution_event& e) { undos += e.accepted() ? 1000 : 1; }
+};
+
+// Evolution of the fit of one superquadric to `points`.
 template <class K>
-void run(const char* kernel)
+BS::Part_evolution<K> evolution_of(const std::vector<typename K::Point_3>& points,
+                                   const BS::Evolution_settings& settings = BS::Evolution_settings())
+{
+  const auto first = BS::fit_superquadric(points);
+  return BS::Part_evolution<K>(points,
+                               BS::Deformable_blended_model<K>(BS::Blended_shape<K>(first.model.shape()),
+                                                               first.model.translation(), first.model.quaternion()),
+                               BS::Fitting_settings(), settings);
+}
+
+// Seeded scans of single superquadrics (full and single view, noise 0.2 %
+// of the diagonal) come out of evolution with one part: every split tried
+// is undone, and each undo restores the model at rest bit for bit (its
+// parameters and structure). The visitor hears of every undo, of no split.
+template <class K>
+void test_no_over_splitting()
+{
+  std::size_t tried = 0;
+  for(bool single_view : {false, true})
+  {
+    std::mt19937_64 rng(2); // (a seed whose fits at rest give proposals to try)
+    const auto truth = BS::testing::random_superellipsoid<K>(rng);
+    const auto points = BS::testing::synthetic_scan(truth, reduced ? 1500 : 3000, single_view, 0.002, rng);
+    BS::Part_evolution<K> evolution = evolution_of<K>(points);
+    evolution.fit_to_rest();
+    const Eigen::VectorXd at_rest = evolution.model().parameters();
+    Counting_visitor visitor;
+    for(const BS::Split_proposal& p : evolution.propose_splits())
+    {
+      const bool kept = evolution.try_split(p, visitor);
+      BS_CHECK(!kept, (single_view ? "single" : "full") << " view: a split of one superquadric was kept");
+      if(kept)
+        return;
+      ++tried;
+      BS_CHECK(evolution.model().shape().number_of_components() == 1 && evolution.model().shape().number_of_blends() == 0,
+               "an undone split left " << evolution.model().shape().number_of_components() << " components");
+      BS_CHECK(BS::testing::same_bits(evolution.model().parameters(), at_rest), "an undone split did not restore the parameters");
+    }
+    const BS::Evolution_status status = evolution.run(visitor);
+    BS_CHECK(evolution.model().shape().number_of_components() == 1,
+             (single_view ? "single" : "full") << " view: " << evolution.model().shape().number_of_components()
+                                               << " parts instead of 1");
+    BS_CHECK(!status.aborted && !status.part_limit_reached, "evolution of one superquadric: wrong status");
+    std::size_t undone = 0;
+    for(const auto& e : evolution.events())
+    {
+      undone += e.accepted() ? 0 : 1;
+      BS_CHECK(e.accepted() == (e.description_length_after < e.description_length_before),
+               "an event kept (" << e.accepted() << ") against its description lengths "
+                                 << e.description_length_before << " -> " << e.description_length_after);
+    }
+    BS_CHECK(visitor.splits == 0 && visitor.undos == undone,
+             "the visitor heard of " << visitor.splits << " splits and " << visitor.undos << " undos, not 0 and " << undone);
+    std::cout << "  one superquadric, " << (single_view ? "single" : "full") << " view: "
+              << evolution.events().size() << " splits tried and undone, " << status.iterations << " iterations"
+              << std::endl;
+  }
+  // Without a tried split, the restore above is not tested.
+  BS_CHECK(tried > 0, "no split was proposed on the noisy single superquadrics");
+}
+
+// The part limit, the abort callback and bad settings.
+template <class K>
+void test_evolution_limits()
+{
+  std::mt19937_64 rng(2); // (a seed whose fit at rest gives proposals)
+  const auto truth = BS::testing::random_superellipsoid<K>(rng);
+  const auto points = BS::testing::synthetic_scan(truth, 1500, false, 0.002, rng);
+  BS::Evolution_settings one_part;
+  one_part.maximum_number_of_parts = 1;
+  BS::Part_evolution<K> limited = evolution_of<K>(points, one_part);
+  const BS::Evolution_status s = limited.run();
+  BS_CHECK(s.part_limit_reached && limited.events().empty(), "maximum_number_of_parts = 1 tried a split");
+
+  // Stopped at once: no iteration, the model as it was.
+  BS::Part_evolution<K> stopped = evolution_of<K>(points);
+  const Eigen::VectorXd start = stopped.model().parameters();
+  const BS::Evolution_status a = stopped.run(BS::Default_evolution_visitor(), [](double) { return false; });
+  BS_CHECK(a.aborted && !a.converged && a.iterations == 0,
+           "aborted at once: status aborted " << a.aborted << ", " << a.iterations << " iterations");
+  BS_CHECK(BS::testing::same_bits(stopped.model().parameters(), start), "evolution stopped at once moved the model");
+  // Stopped while fitting a split: the split is undone, bit for bit.
+  stopped.fit_to_rest();
+  const Eigen::VectorXd at_rest = stopped.model().parameters();
+  const std::vector<BS::Split_proposal> proposals = stopped.propose_splits();
+  BS_CHECK(!proposals.empty(), "no proposal to stop in");
+  if(!proposals.empty())
+  {
+    Counting_visitor visitor;
+    const bool kept = stopped.try_split(proposals.front(), visitor, [](double) { return false; });
+    BS_CHECK(!kept && visitor.undos == 1 && stopped.model().shape().number_of_components() == 1 &&
+               BS::testing::same_bits(stopped.model().parameters(), at_rest),
+             "a split stopped while fitting was not undone exactly");
+  }
+
+  auto refused = [&](BS::Evolution_settings settings, const std::string& expected) {
+    try
+    {
+      evolution_of<K>(points, settings);
+    }
+    catch(const std::invalid_argument& e)
+    {
+      BS_CHECK(std::string(e.what()).find(expected) != std::string::npos,
+               "message \"" << e.what() << "\" does not say \"" << expected << "\"");
+      return;
+    }
+    BS_CHECK(false, "accepted: expected an error saying \"" << expected << "\"");
+  };
+  BS::Evolution_settings bad;
+  bad.maximum_number_of_parts = 0;
+  refused(bad, "maximum_number_of_parts");
+  bad = BS::Evolution_settings();
+  bad.target_accuracy = std::nan("");
+  refused(bad, "target_accuracy");
+  bad = BS::Evolution_settings();
+  bad.maximum_split_tries = 0;
+  refused(bad, "maximum_split_tries");
+  bad = BS::Evolution_settings();
+  bad.threshold_factor = -1.;
+  refused(bad, "threshold_factor");
+}
+
+template <class K>
+void run_part_evolution(const char* kernel)
+{
+  const int before = blended_shape_test::failures();
+  test_no_over_splitting<K>();
+  test_evolution_limits<K>();
+  std::cout << "part evolution with " << kernel << (blended_shape_test::failures() == before ? ": SUCCESS" : ": FAILED")
+            << std::endl;
+}
+
+template <class K>
+void run_force_regions(const char* kernel)
 {
   std::cout << "kernel " << kernel << std::endl;
   const int before = blended_shape_test::failures();
@@ -374,12 +513,22 @@ void run(const char* kernel)
 
 } // namespace
 
-int main()
+int main(int argc, char** argv)
 {
-  run<CGAL::Exact_predicates_inexact_constructions_kernel>("Epick");
-#ifndef BLENDED_SHAPE_ONE_KERNEL // sanitizer builds: Epick only (see test/CMakeLists.txt)
-  run<CGAL::Simple_cartesian<double>>("Simple_cartesian<double>");
-#endif
-  blended_shape_test::report("test_force_regions");
+  const std::string part = argc > 1 ? argv[1] : "all";
+  if(argc > 2 || (part != "all" && part != "regions" && part != "parts"))
+  {
+    std::cerr << "usage: test_evolution [all|regions|parts]" << std::endl;
+    return EXIT_FAILURE;
+  }
+  if(part == "all" || part == "regions")
+  {
+    blended_shape_test::for_each_kernel([](auto kernel, const char* name) { run_force_regions<decltype(kernel)>(name); });
+  }
+  if(part == "all" || part == "parts")
+  {
+    blended_shape_test::for_each_kernel([](auto kernel, const char* name) { run_part_evolution<decltype(kernel)>(name); });
+  }
+  blended_shape_test::report("test_evolution " + part);
   return blended_shape_test::exit_code();
 }
