@@ -55,17 +55,8 @@ std::vector<K::Point_3> body_with_part(unsigned seed)
   const Primitive_model body(BS::Superquadric_ellipsoid<K>(1., 0.8, 0.6, 1., 1.));
   const Primitive_model part(BS::Superquadric_ellipsoid<K>(0.3, 0.3, 0.5, 0.4, 1.), Eigen::Vector3d(0., 0., 0.9),
                              Eigen::Vector4d(1., 0., 0., 0.));
-  std::vector<K::Point_3> points;
   std::mt19937_64 rng(seed);
-  std::normal_distribution<double> g(0., 0.006);
-  for(const Primitive_model* m : {&body, &part})
-    for(const auto& s : BS::sample_model_surface(*m, 4000, 5))
-    {
-      const Eigen::Vector3d p(s.point.x(), s.point.y(), s.point.z());
-      if(!BS::testing::is_inside(m == &body ? part : body, p))
-        points.emplace_back(p.x() + g(rng), p.y() + g(rng), p.z() + g(rng));
-    }
-  return points;
+  return BS::testing::scan_of_union<K::Point_3>(body, part, 4000, 0.006, rng);
 }
 
 double rms_over_diagonal(BS::Part_evolution<K>& e)

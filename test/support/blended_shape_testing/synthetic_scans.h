@@ -109,6 +109,25 @@ bool is_inside(const Model& m, const Eigen::Vector3d& p)
   return xy + std::pow(std::abs(x[2] / a[2]), 2. / a[3]) < 1.;
 }
 
+// Noisy samples of the surface of the union of two placed superellipsoids
+// (a body and a part sticking out of it): `n` samples of each surface (by
+// sample_model_surface(), seed 5), those outside the other one kept, with
+// normal noise of standard deviation `noise` on each coordinate.
+template <class Point_3, class Model, class RandomEngine>
+std::vector<Point_3> scan_of_union(const Model& body, const Model& part, std::size_t n, double noise, RandomEngine& rng)
+{
+  std::vector<Point_3> points;
+  std::normal_distribution<double> g(0., noise);
+  for(const Model* m : {&body, &part})
+    for(const auto& s : sample_model_surface(*m, n, 5))
+    {
+      const Eigen::Vector3d p(CGAL::to_double(s.point.x()), CGAL::to_double(s.point.y()), CGAL::to_double(s.point.z()));
+      if(!is_inside(m == &body ? part : body, p))
+        points.emplace_back(p.x() + g(rng), p.y() + g(rng), p.z() + g(rng));
+    }
+  return points;
+}
+
 } // namespace testing
 } // namespace Blended_shapes
 } // namespace CGAL

@@ -392,18 +392,14 @@ public:
       const Added_side::Location loc = A.locate(v, tube, B.core_stretch());
       const Ellipse_blending_region& R = B.base_region();
       if(loc.side == Region_side::Strip)
-      {
-        const Eigen::Vector2d u1 = R.strip_point(-loc.d, loc.theta);
-        return Shape_point(B.base_component(), Chart_point(R.chart(), u1.x(), u1.y()));
-      }
+        return base_point(B, R.strip_point(-loc.d, loc.theta));
       if(loc.side == Region_side::Discarded)
         return std::nullopt;
       if(B.is_gradual())
       {
         if(!loc.has_core)
           return std::nullopt; // outside the disk of a gradual blend: not on the surface
-        const Eigen::Vector2d u1 = R.core_point(loc.t, loc.theta, -1., B.core_stretch());
-        return Shape_point(B.base_component(), Chart_point(R.chart(), u1.x(), u1.y()));
+        return base_point(B, R.core_point(loc.t, loc.theta, -1., B.core_stretch()));
       }
     }
     return q;
@@ -873,6 +869,18 @@ private:
       if(B.added_component() == c && B.is_gradual())
         throw std::invalid_argument(std::string("Blended_shape::") + what + ": component " + std::to_string(c) +
                                     " is still being blended in gradually; finish its blend first");
+  }
+
+  // The point `u1` of blend `B`'s base chart, if it is in that chart's domain.
+  // The region's check (validate_regions()) samples its strip: between the
+  // samples, the strip's outer edge may cross the chart's rim by a hair, and
+  // what lies beyond it is on no surface.
+  std::optional<Shape_point> base_point(const Blend& B, const Eigen::Vector2d& u1) const
+  {
+    const std::size_t chart = B.base_region().chart();
+    if(!m_components[B.base_component()].shape().chart_domain(chart).contains(u1.x(), u1.y()))
+      return std::nullopt;
+    return Shape_point(B.base_component(), Chart_point(chart, u1.x(), u1.y()));
   }
 
   void check_point(const Shape_point& p) const

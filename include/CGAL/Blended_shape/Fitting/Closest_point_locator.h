@@ -345,21 +345,45 @@ private:
     for(const Chart_point& w : others)
     {
       restore(before);
-      const double h = 1e-7;
       Chart_jacobian Jw;
-      for(int k = 0; k < 2; ++k)
-      {
-        const Chart_point a(w.chart, w.x + (k == 0 ? h : 0.), w.y + (k == 1 ? h : 0.));
-        const Chart_point b(w.chart, w.x - (k == 0 ? h : 0.), w.y - (k == 1 ? h : 0.));
-        const auto xa = m_model.point(a), xb = m_model.point(b);
-        Jw.col(k) = Eigen::Vector3d(xa.x() - xb.x(), xa.y() - xb.y(), xa.z() - xb.z()) / (2. * h);
-      }
+      if(!difference_jacobian(w, Jw))
+        continue;
       bool c2, l2;
       if(step_from(w, Jw, c2, l2) && d2 < first.d2)
         return true;
       restore(first);
     }
     return false;
+  }
+
+  // The chart Jacobian at `w` by differences: central where both neighbours
+  // lie on the surface, one-sided at the rim of the chart (a point there may
+  // be the other chart's representative of a point near the seam). False if
+  // neither neighbour of a direction is on the surface.
+  bool difference_jacobian(const Chart_point& w, Chart_jacobian& Jw) const
+  {
+    const double h = 1e-7;
+    Chart_point ignored;
+    const auto on_surface = [&](const Chart_point& c) { return m_model.canonical_surface_point(c, ignored); };
+    const auto position = [&](const Chart_point& c) {
+      const auto xc = m_model.point(c);
+      return Eigen::Vector3d(xc.x(), xc.y(), xc.z());
+    };
+    for(int k = 0; k < 2; ++k)
+    {
+      const Chart_point a(w.chart, w.x + (k == 0 ? h : 0.), w.y + (k == 1 ? h : 0.));
+      const Chart_point b(w.chart, w.x - (k == 0 ? h : 0.), w.y - (k == 1 ? h : 0.));
+      const bool has_a = on_surface(a), has_b = on_surface(b);
+      if(has_a && has_b)
+        Jw.col(k) = (position(a) - position(b)) / (2. * h);
+      else if(has_a)
+        Jw.col(k) = (position(a) - position(w)) / h;
+      else if(has_b)
+        Jw.col(k) = (position(w) - position(b)) / h;
+      else
+        return false;
+    }
+    return true;
   }
 
   const Model& m_model;
