@@ -22,7 +22,9 @@
 #include <CGAL/Blended_shape/Evolution/Force_regions.h>
 #include <CGAL/Blended_shape/Evolution/Part_evolution.h>
 #include <CGAL/Blended_shape/Evolution/Split_proposal.h>
+#include <CGAL/Blended_shape/Evolution/fit_blended_shape.h>
 #include <CGAL/Blended_shape/Fitting/fit_superquadric.h>
+#include <blended_shape_testing/equivariance.h>
 #include <blended_shape_testing/same_bits.h>
 #include <blended_shape_testing/synthetic_scans.h>
 #include <CGAL/Blended_shape/Fitting/Deformable_blended_model.h>
@@ -520,14 +522,87 @@ void test_split_model_fits_to_rest()
             << before << " -> " << after << std::endl;
 }
 
+// The one-call evolving fit, fit_blended_shape(), on a noisy scan of one
+// superquadric (1500 points, a seed whose rest states give splits to try):
+// - one part, every split tried undone, the RMS at most the first fit's
+//   distance of all points;
+// - its named parameters reach the settings (a part limit of 1 tries no
+//   split; 0 is refused with a message naming it);
+// - 1 and 2 threads give the same bits (model and events);
+// - the input moved by a similarity (rotation, translation, scale) gives one
+//   part too, and moved and scaled alone (no rotation) the same relative RMS.
+template <class K>
+void test_fit_blended_shape()
+{
+  typedef typename K::Point_3 Point_3;
+  namespace BSP = BS::parameters;
+  std::mt19937_64 rng(2);
+  const auto truth = BS::testing::random_superellipsoid<K>(rng);
+  const std::vector<Point_3> points = BS::testing::synthetic_scan(truth, 1500, false, 0.002, rng);
+  const auto fit = [](const std::vector<Point_3>& p, std::size_t threads) {
+    return BS::fit_blended_shape(p, BSP::number_of_threads(threads));
+  };
+  const auto a = fit(points, 1);
+  BS_CHECK(a.model.shape().number_of_components() == 1 && !a.events.empty(),
+           "one superquadric: " << a.model.shape().number_of_components() << " parts, " << a.events.size()
+                                << " splits tried");
+  for(const auto& e : a.events)
+    BS_CHECK(!e.accepted() && e.rms_before > 0. && std::abs(e.rms_before / a.rms - 1.) < 1e-12,
+             "an event of one superquadric: kept " << e.accepted() << ", RMS before " << e.rms_before
+                                                   << " against the result's " << a.rms);
+  std::cout << "  fit_blended_shape, one superquadric: " << a.events.size() << " splits tried and undone, RMS "
+            << a.rms << " (" << a.rms_over_bbox_diagonal << " of the diagonal)" << std::endl;
+
+  const auto limited = BS::fit_blended_shape(points, BSP::maximum_number_of_parts(std::size_t(1)));
+  BS_CHECK(limited.events.empty() && limited.status.part_limit_reached,
+           "maximum_number_of_parts(1) did not reach evolution");
+
+  const auto b = fit(points, 2);
+  bool same = BS::testing::same_bits(a.model.parameters(), b.model.parameters()) && a.events.size() == b.events.size();
+  for(std::size_t i = 0; same && i < a.events.size(); ++i)
+    same = BS::testing::same_bits(a.events[i].description_length_after, b.events[i].description_length_after);
+  BS_CHECK(same, "fit_blended_shape at 1 and 2 threads: different results");
+
+  BS::testing::Similarity T = BS::testing::random_similarity(rng, 3.7, 10.);
+  for(bool rotated : {true, false})
+  {
+    if(!rotated)
+      T.R = Eigen::Matrix3d::Identity();
+    std::vector<Point_3> moved;
+    for(const Point_3& p : points)
+      moved.push_back(T(p));
+    const auto c = fit(moved, 1);
+    BS_CHECK(c.model.shape().number_of_components() == 1,
+             (rotated ? "rotated" : "scaled and moved") << " input: " << c.model.shape().number_of_components() << " parts");
+    if(!rotated)
+      BS_CHECK(std::abs(c.rms_over_bbox_diagonal / a.rms_over_bbox_diagonal - 1.) <= 1e-6,
+               "scaled and moved input: RMS/diagonal " << c.rms_over_bbox_diagonal << " instead of "
+                                                       << a.rms_over_bbox_diagonal);
+  }
+
+  bool refused = false;
+  try
+  {
+    BS::fit_blended_shape(points, BSP::maximum_number_of_parts(std::size_t(0)));
+  }
+  catch(const std::invalid_argument& e)
+  {
+    refused = std::string(e.what()).find("fit_blended_shape: maximum_number_of_parts") != std::string::npos;
+  }
+  BS_CHECK(refused, "maximum_number_of_parts(0) not refused with a message naming it");
+}
+
 template <class K>
 void run_part_evolution(const char* kernel)
 {
   const int before = blended_shape_test::failures();
   test_no_over_splitting<K>();
   test_evolution_limits<K>();
-  if(!reduced) // (a case the sanitizers do not add to: it is about geometry)
+  if(!reduced) // (cases the sanitizers do not add to: they are about geometry, and slow there)
+  {
     test_split_model_fits_to_rest<K>();
+    test_fit_blended_shape<K>();
+  }
   std::cout << "part evolution with " << kernel << (blended_shape_test::failures() == before ? ": SUCCESS" : ": FAILED")
             << std::endl;
 }

@@ -5,8 +5,10 @@
 #ifndef CGAL_BLENDED_SHAPE_EVOLUTION_H
 #define CGAL_BLENDED_SHAPE_EVOLUTION_H
 
+#include <CGAL/Blended_shape/Evolution/Evolution_settings.h>
 #include <CGAL/Blended_shape/Evolution/Force_regions.h>
 #include <CGAL/Blended_shape/Evolution/Part_evolution.h>
 #include <CGAL/Blended_shape/Evolution/Split_proposal.h>
+#include <CGAL/Blended_shape/Evolution/fit_blended_shape.h>
 
 #endif // CGAL_BLENDED_SHAPE_EVOLUTION_H

@@ -25,7 +25,9 @@ namespace internal_np {
 
 #define CGAL_BLENDED_SHAPE_PARAMETER(NAME) enum NAME##_t { NAME };
 #define CGAL_BLENDED_SHAPE_FITTING_SETTING(NAME) CGAL_BLENDED_SHAPE_PARAMETER(NAME)
+#define CGAL_BLENDED_SHAPE_EVOLUTION_SETTING(NAME) CGAL_BLENDED_SHAPE_PARAMETER(NAME)
 #include <CGAL/Blended_shape/internal/parameter_names.h>
+#undef CGAL_BLENDED_SHAPE_EVOLUTION_SETTING
 #undef CGAL_BLENDED_SHAPE_FITTING_SETTING
 #undef CGAL_BLENDED_SHAPE_PARAMETER
 
@@ -48,11 +50,47 @@ namespace parameters {
              CGAL::Named_function_parameters<NP_T, NP_Tag, NP_Base>>(value, pack);    \
   }
 #define CGAL_BLENDED_SHAPE_FITTING_SETTING(NAME) CGAL_BLENDED_SHAPE_PARAMETER(NAME)
+#define CGAL_BLENDED_SHAPE_EVOLUTION_SETTING(NAME) CGAL_BLENDED_SHAPE_PARAMETER(NAME)
 #include <CGAL/Blended_shape/internal/parameter_names.h>
+#undef CGAL_BLENDED_SHAPE_EVOLUTION_SETTING
 #undef CGAL_BLENDED_SHAPE_FITTING_SETTING
 #undef CGAL_BLENDED_SHAPE_PARAMETER
 
 } // namespace parameters
+
+namespace internal {
+
+// Reading settings (Fitting_settings, Evolution_settings) from named
+// parameters, with the names written once, in the list: read_settings(s, np)
+// sets each member NAME of `s` that the list names from the named parameter
+// NAME of `np`, if given. (read_setting() of a NAME that `s` has no member of
+// does nothing: the `long` overload.)
+#define CGAL_BLENDED_SHAPE_PARAMETER(NAME)
+#define CGAL_BLENDED_SHAPE_FITTING_SETTING(NAME)                                                       \
+  template <class Settings, class NP>                                                                  \
+  auto read_setting(Settings& s, const NP& np, internal_np::NAME##_t, int) -> decltype(void(s.NAME))   \
+  {                                                                                                    \
+    s.NAME = CGAL::parameters::choose_parameter(CGAL::parameters::get_parameter(np, internal_np::NAME), s.NAME); \
+  }                                                                                                    \
+  template <class Settings, class NP>                                                                  \
+  void read_setting(Settings&, const NP&, internal_np::NAME##_t, long) {}
+#define CGAL_BLENDED_SHAPE_EVOLUTION_SETTING(NAME) CGAL_BLENDED_SHAPE_FITTING_SETTING(NAME)
+#include <CGAL/Blended_shape/internal/parameter_names.h>
+#undef CGAL_BLENDED_SHAPE_EVOLUTION_SETTING
+#undef CGAL_BLENDED_SHAPE_FITTING_SETTING
+
+template <class Settings, class NP>
+void read_settings(Settings& s, const NP& np)
+{
+#define CGAL_BLENDED_SHAPE_FITTING_SETTING(NAME) read_setting(s, np, internal_np::NAME, 0);
+#define CGAL_BLENDED_SHAPE_EVOLUTION_SETTING(NAME) read_setting(s, np, internal_np::NAME, 0);
+#include <CGAL/Blended_shape/internal/parameter_names.h>
+#undef CGAL_BLENDED_SHAPE_EVOLUTION_SETTING
+#undef CGAL_BLENDED_SHAPE_FITTING_SETTING
+}
+#undef CGAL_BLENDED_SHAPE_PARAMETER
+
+} // namespace internal
 } // namespace Blended_shapes
 } // namespace CGAL
 

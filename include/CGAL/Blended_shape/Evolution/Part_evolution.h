@@ -4,6 +4,7 @@
 
 #include <CGAL/Blended_shape/Blending/Blended_shape_mesh.h>
 #include <CGAL/Blended_shape/Blending/Quotient_domain.h>
+#include <CGAL/Blended_shape/Evolution/Evolution_settings.h>
 #include <CGAL/Blended_shape/Evolution/Force_regions.h>
 #include <CGAL/Blended_shape/Evolution/Split_proposal.h>
 #include <CGAL/Blended_shape/Evolution/internal/isolated_points.h>
@@ -22,28 +23,12 @@
 #include <optional>
 #include <stdexcept>
 #include <string>
+#include <type_traits>
+#include <utility>
 #include <vector>
 
 namespace CGAL {
 namespace Blended_shapes {
-
-/// \ingroup PkgBlendedShapeEvolution
-/// The settings of part evolution (Part_evolution, fit_blended_shape()).
-struct Evolution_settings
-{
-  /// No split is tried once the model has this many components (1: no evolution).
-  std::size_t maximum_number_of_parts = 8;
-  /// Evolution stops once the RMS distance of the points to the model, over
-  /// the diagonal of their bounding box, is at most this (0: never).
-  double target_accuracy = 0.;
-  /// At each rest state, at most this many boundaries (in decreasing order of
-  /// their flux difference) are tried before evolution ends.
-  std::size_t maximum_split_tries = 3;
-  /// `eps_F` of the force classes, in standard errors of the noise (Force_regions).
-  double threshold_factor = 3.;
-  /// The resolution of the chart meshes of the force analysis (Blended_shape_pieces).
-  int analysis_resolution = 16;
-};
 
 /// \ingroup PkgBlendedShapeEvolution
 /// What happened to the model's structure.
@@ -92,6 +77,33 @@ struct Evolution_status
   bool part_limit_reached = false; ///< Evolution_settings::maximum_number_of_parts reached
 };
 
+namespace internal {
+
+// The evolution hooks of a visitor, called if it has them: any fitting
+// visitor (Default_fitting_visitor) can watch an evolution.
+template <class Visitor, class = void>
+struct Has_evolution_hooks : std::false_type
+{};
+template <class Visitor>
+struct Has_evolution_hooks<Visitor, std::void_t<decltype(std::declval<Visitor&>().on_split(std::declval<const Evolution_event&>())),
+                                                decltype(std::declval<Visitor&>().on_undo(std::declval<const Evolution_event&>()))>>
+  : std::true_type
+{};
+
+template <class Visitor>
+void notify_event(Visitor& visitor, const Evolution_event& e)
+{
+  if constexpr(Has_evolution_hooks<Visitor>::value)
+  {
+    if(e.accepted())
+      visitor.on_split(e);
+    else
+      visitor.on_undo(e);
+  }
+}
+
+} // namespace internal
+
 /*!
 \ingroup PkgBlendedShapeEvolution
 
@@ -115,7 +127,7 @@ parameters is, up to terms that do not depend on the model,
   `L = (n/2) ln(MSD) + (k/2) ln(n)`,
 
 `n` the number of points, `MSD` their mean squared distance to the model
-at rest (Rissanen's MDL, which coincides with the Bayesian information
+at rest (as mean_squared_distance() measures it) (Rissanen's MDL, which coincides with the Bayesian information
 criterion). A split adds a component and a blend, about twenty parameters:
 it is kept only if `L` falls. On 10000 points it must lower the mean
 squared distance by 1.5 % or more; a split that only fits noise does not.
@@ -131,7 +143,9 @@ which is exactly what must pull the model into a split.
 Each phase is driven by run(), or step by step with fit_to_rest(),
 propose_splits() and try_split(). The abort callback is passed to every fit;
 when it stops the fit of a split model, the split is undone, so the model is
-always one that was kept.
+always one that was kept. The visitor is any fitting visitor
+(Default_fitting_visitor); its `on_split()` and `on_undo()` are called if it
+has both (Default_evolution_visitor).
 
 \tparam GeomTraits a CGAL kernel
 */
@@ -152,7 +166,7 @@ public:
                  const Evolution_settings& evolution = Evolution_settings(), PointMap point_map = PointMap())
     : m_settings(evolution)
   {
-    check_settings(evolution);
+    check_evolution_settings(evolution, "Part_evolution");
     check_points(points, point_map);
     std::vector<Eigen::Vector3d> all;
     for(const auto& item : points)
@@ -195,15 +209,25 @@ public:
     return m_last_fit;
   }
 
-  /// The description length `L = (n/2) ln(MSD) + (k/2) ln(n)` of the
-  /// points given the current model (see the class description).
-  double description_length()
+  /// The mean squared distance of the points to the current model, as
+  /// evolution measures it: the smaller of the fitter's (its closest points
+  /// followed from the last fit) and that of a fresh search (from the
+  /// model's mesh, as a new fitter finds them). Both are distances to points
+  /// of the surface, so the smaller is the closer to the true value. Either
+  /// alone misses some closest points by about 1 % of the mean squared
+  /// distance, as much as a split must gain, and a split model's search
+  /// starts afresh: measured by one method before a split and by the other
+  /// after it, splits would be judged on search errors.
+  double mean_squared_distance()
   {
-    const double n = double(m_fitter->number_of_points());
-    // A floor far below any noise keeps the logarithm finite on exact data.
-    const double msd = (std::max)(m_fitter->mean_squared_distance(true), 1e-300);
-    return 0.5 * n * std::log(msd) + 0.5 * double(free_parameters()) * std::log(n);
+    Fitter fresh(m_kept, m_fitter->model(), m_fitter->settings());
+    return (std::min)(m_fitter->mean_squared_distance(true), fresh.mean_squared_distance(true));
   }
+
+  /// The description length `L = (n/2) ln(MSD) + (k/2) ln(n)` of the
+  /// points given the current model (see the class description), with the
+  /// mean squared distance of mean_squared_distance().
+  double description_length() { return description_length_of(mean_squared_distance()); }
 
   /// The split proposals of the current model (which should be at rest):
   /// up to `maximum_split_tries`, from the boundaries of the force analysis
@@ -234,41 +258,46 @@ public:
   bool try_split(const Split_proposal& proposal, Visitor&& visitor = Visitor(),
                  const std::function<bool(double)>& callback = std::function<bool(double)>())
   {
-    const Model before = m_fitter->model();
     const bool converged_before = m_rest_converged;
     Evolution_event e;
     e.iteration = m_iterations;
     e.component = proposal.component;
-    e.new_component = before.shape().number_of_components();
+    e.new_component = m_fitter->model().shape().number_of_components();
     e.boundary = proposal.boundary;
     e.proposal = proposal;
-    e.description_length_before = description_length();
-    e.rms_before = std::sqrt(m_fitter->mean_squared_distance(true));
+    const double msd_before = mean_squared_distance();
+    e.description_length_before = description_length_of(msd_before);
+    e.rms_before = std::sqrt(msd_before);
+    // The split model gets a fitter of its own; the one at rest before stays
+    // as it is, to come back to.
+    std::unique_ptr<Fitter> before;
     try
     {
-      m_fitter->restructure(apply_split(before, proposal));
+      before = std::exchange(m_fitter, std::make_unique<Fitter>(m_kept, apply_split(m_fitter->model(), proposal),
+                                                                m_fitter->settings()));
     }
     catch(const std::invalid_argument&)
     {
       return false; // a region the shape refuses: nothing changed
     }
     const Fitting_status status = fit_to_rest(visitor, callback);
-    e.description_length_after = description_length();
-    e.rms_after = std::sqrt(m_fitter->mean_squared_distance(true));
+    const double msd_after = mean_squared_distance();
+    e.description_length_after = description_length_of(msd_after);
+    e.rms_after = std::sqrt(msd_after);
     if(!status.aborted && e.description_length_after < e.description_length_before)
     {
       e.kind = Evolution_event_kind::Split;
       m_events.push_back(e);
-      visitor.on_split(m_events.back());
+      internal::notify_event(visitor, m_events.back());
       return true;
     }
-    // Exactly the model before: its parameters and structure, and a fitter in
-    // the state of a new one (Deformable_model_fitter::restructure()).
-    m_fitter->restructure(before);
+    // Exactly as before: the model (parameters and structure) and its fitter
+    // with the closest points it followed.
+    m_fitter = std::move(before);
     m_rest_converged = converged_before;
     e.kind = Evolution_event_kind::Undo;
     m_events.push_back(e);
-    visitor.on_undo(m_events.back());
+    internal::notify_event(visitor, m_events.back());
     return false;
   }
 
@@ -284,7 +313,7 @@ public:
     while(!m_last_fit.aborted)
     {
       if(m_settings.target_accuracy > 0. &&
-         std::sqrt(m_fitter->mean_squared_distance(true)) <= m_settings.target_accuracy * m_fitter->bounding_box_diagonal())
+         std::sqrt(mean_squared_distance()) <= m_settings.target_accuracy * m_fitter->bounding_box_diagonal())
       {
         status.target_reached = true;
         break;
@@ -309,6 +338,13 @@ public:
   }
 
 private:
+  double description_length_of(double msd) const
+  {
+    const double n = double(m_fitter->number_of_points());
+    // A floor far below any noise keeps the logarithm finite on exact data.
+    return 0.5 * n * std::log((std::max)(msd, 1e-300)) + 0.5 * double(free_parameters()) * std::log(n);
+  }
+
   // The parameters that move in a fit (the fixed ones are not described).
   std::size_t free_parameters() const
   {
@@ -317,21 +353,6 @@ private:
     for(std::size_t i = 0; i < m.number_of_parameters(); ++i)
       k += m.is_fixed_parameter(i) ? 0 : 1;
     return k;
-  }
-
-  static void check_settings(const Evolution_settings& s)
-  {
-    if(s.maximum_number_of_parts < 1)
-      throw std::invalid_argument("Part_evolution: maximum_number_of_parts must be at least 1 (1: no evolution)");
-    if(!(s.target_accuracy >= 0.) || !std::isfinite(s.target_accuracy))
-      throw std::invalid_argument("Part_evolution: target_accuracy must be finite and >= 0 (0: no target), not " +
-                                  std::to_string(s.target_accuracy));
-    if(s.maximum_split_tries < 1)
-      throw std::invalid_argument("Part_evolution: maximum_split_tries must be at least 1");
-    if(!(s.threshold_factor > 0.) || !std::isfinite(s.threshold_factor))
-      throw std::invalid_argument("Part_evolution: threshold_factor must be finite and > 0");
-    if(s.analysis_resolution < 4)
-      throw std::invalid_argument("Part_evolution: analysis_resolution must be at least 4");
   }
 
   Evolution_settings m_settings;

@@ -115,13 +115,7 @@ Fitting_settings settings_from_named_parameters(const NamedParameters& np = CGAL
   s.random_seed = choose_parameter(get_parameter(np, CGAL::internal_np::random_seed), s.random_seed);
   s.maximum_running_time = choose_parameter(get_parameter(np, CGAL::internal_np::maximum_running_time), s.maximum_running_time);
   // the package's, one per member of the same name (internal/parameter_names.h)
-#define CGAL_BLENDED_SHAPE_PARAMETER(NAME)
-#define CGAL_BLENDED_SHAPE_FITTING_SETTING(NAME) s.NAME = choose_parameter(get_parameter(np, internal_np::NAME), s.NAME);
-#ifndef DOXYGEN_RUNNING // the manual leaves internal/ out: Doxygen would not find the list
-#include <CGAL/Blended_shape/internal/parameter_names.h>
-#endif
-#undef CGAL_BLENDED_SHAPE_FITTING_SETTING
-#undef CGAL_BLENDED_SHAPE_PARAMETER
+  internal::read_settings(s, np);
   return s;
 }
 

@@ -92,18 +92,14 @@ public:
   template <class Model>
   Model model_from_normalized(const Model& model) const
   {
-    Eigen::VectorXd q = model.parameters();
-    for(std::size_t i = 0; i < model.number_of_parameters(); ++i)
-    {
-      const Eigen::Index k = Eigen::Index(i);
-      if(i < 3)
-        q[k] = m_center[k] + m_scale * q[k];
-      else if(model.parameter_kind(i) == Parameter_kind::Length)
-        q[k] *= m_scale;
-    }
-    Model result = model;
-    result.set_parameters(q);
-    return result;
+    return transformed(model, m_center, m_scale);
+  }
+
+  // The inverse: `model`, given in the frame of the input, in the normalized frame.
+  template <class Model>
+  Model model_to_normalized(const Model& model) const
+  {
+    return transformed(model, -m_center / m_scale, 1. / m_scale);
   }
 
   Ellipsoid_fit<GeomTraits> from_normalized(Ellipsoid_fit<GeomTraits> fit) const
@@ -139,6 +135,25 @@ public:
   }
 
 private:
+  // `model` scaled by `scale` about the origin, then moved by `shift`: the
+  // pose's translation (its first three parameters) and every length.
+  template <class Model>
+  static Model transformed(const Model& model, const Eigen::Vector3d& shift, double scale)
+  {
+    Eigen::VectorXd q = model.parameters();
+    for(std::size_t i = 0; i < model.number_of_parameters(); ++i)
+    {
+      const Eigen::Index k = Eigen::Index(i);
+      if(i < 3)
+        q[k] = shift[k] + scale * q[k];
+      else if(model.parameter_kind(i) == Parameter_kind::Length)
+        q[k] *= scale;
+    }
+    Model result = model;
+    result.set_parameters(q);
+    return result;
+  }
+
   static Eigen::Vector3d coordinates(const Point_3& p)
   {
     return Eigen::Vector3d(CGAL::to_double(p.x()), CGAL::to_double(p.y()), CGAL::to_double(p.z()));

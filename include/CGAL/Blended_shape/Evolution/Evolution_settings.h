@@ -1,0 +1,72 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
+#ifndef CGAL_BLENDED_SHAPE_EVOLUTION_EVOLUTION_SETTINGS_H
+#define CGAL_BLENDED_SHAPE_EVOLUTION_EVOLUTION_SETTINGS_H
+
+#include <CGAL/Blended_shape/parameters.h>
+
+#include <CGAL/Named_function_parameters.h>
+#include <CGAL/boost/graph/named_params_helper.h>
+
+#include <cmath>
+#include <cstddef>
+#include <stdexcept>
+#include <string>
+
+namespace CGAL {
+namespace Blended_shapes {
+
+/// \ingroup PkgBlendedShapeEvolution
+/// The settings of part evolution (Part_evolution, fit_blended_shape()).
+/// Each member is also a named parameter of the same name in
+/// Blended_shapes::parameters (evolution_settings_from_named_parameters()).
+struct Evolution_settings
+{
+  /// No split is tried once the model has this many components (1: no evolution).
+  std::size_t maximum_number_of_parts = 8;
+  /// Evolution stops once the RMS distance of the points to the model, over
+  /// the diagonal of their bounding box, is at most this (0: never).
+  double target_accuracy = 0.;
+  /// At each rest state, at most this many boundaries (in decreasing order of
+  /// their flux difference) are tried before evolution ends.
+  std::size_t maximum_split_tries = 3;
+  /// `eps_F` of the force classes, in standard errors of the noise (Force_regions).
+  double threshold_factor = 3.;
+  /// The resolution of the chart meshes of the force analysis (Blended_shape_pieces).
+  int analysis_resolution = 16;
+};
+
+/// \ingroup PkgBlendedShapeEvolution
+/// \throws std::invalid_argument, with a message that starts with `who`, if
+/// a member of `s` is out of its range.
+inline void check_evolution_settings(const Evolution_settings& s, const std::string& who)
+{
+  if(s.maximum_number_of_parts < 1)
+    throw std::invalid_argument(who + ": maximum_number_of_parts must be at least 1 (1: no evolution)");
+  if(!(s.target_accuracy >= 0.) || !std::isfinite(s.target_accuracy))
+    throw std::invalid_argument(who + ": target_accuracy must be finite and >= 0 (0: no target), not " +
+                                std::to_string(s.target_accuracy));
+  if(s.maximum_split_tries < 1)
+    throw std::invalid_argument(who + ": maximum_split_tries must be at least 1");
+  if(!(s.threshold_factor > 0.) || !std::isfinite(s.threshold_factor))
+    throw std::invalid_argument(who + ": threshold_factor must be finite and > 0");
+  if(s.analysis_resolution < 4)
+    throw std::invalid_argument(who + ": analysis_resolution must be at least 4");
+}
+
+/// \ingroup PkgBlendedShapeEvolution
+/// The Evolution_settings given by the named parameters `np`: each member of
+/// Evolution_settings is the named parameter of the same name in
+/// Blended_shapes::parameters (e.g. `maximum_number_of_parts(4)`); the
+/// members not given keep their defaults.
+template <class NamedParameters = CGAL::parameters::Default_named_parameters>
+Evolution_settings evolution_settings_from_named_parameters(const NamedParameters& np = CGAL::parameters::default_values())
+{
+  Evolution_settings s;
+  internal::read_settings(s, np);
+  return s;
+}
+
+} // namespace Blended_shapes
+} // namespace CGAL
+
+#endif // CGAL_BLENDED_SHAPE_EVOLUTION_EVOLUTION_SETTINGS_H
