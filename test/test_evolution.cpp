@@ -528,6 +528,7 @@ void test_split_model_fits_to_rest()
 //   distance of all points;
 // - its named parameters reach the settings (a part limit of 1 tries no
 //   split; 0 is refused with a message naming it);
+// - a callback that stops at once leaves the first fit, aborted, no event;
 // - 1 and 2 threads give the same bits (model and events);
 // - the input moved by a similarity (rotation, translation, scale) gives one
 //   part too, and moved and scaled alone (no rotation) the same relative RMS.
@@ -579,6 +580,14 @@ void test_fit_blended_shape()
                "scaled and moved input: RMS/diagonal " << c.rms_over_bbox_diagonal << " instead of "
                                                        << a.rms_over_bbox_diagonal);
   }
+
+  // Stopped at once: in the first fit, which the result holds, with no event.
+  const auto stopped =
+    BS::fit_blended_shape(points, CGAL::parameters::callback(std::function<bool(double)>([](double) { return false; })));
+  BS_CHECK(stopped.status.aborted && stopped.events.empty() && stopped.model.shape().number_of_components() == 1 &&
+             stopped.model.parameters().allFinite(),
+           "fit_blended_shape stopped at once: aborted " << stopped.status.aborted << ", " << stopped.events.size()
+                                                         << " events");
 
   bool refused = false;
   try

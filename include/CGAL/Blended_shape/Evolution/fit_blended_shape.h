@@ -97,7 +97,9 @@ auto fit_blended_shape(const PointRange& points, const NamedParameters& np = CGA
           first_normalized.quaternion()),
     settings_from_named_parameters(np), evolution_settings);
   Result result{normalization.model_from_normalized(evolution.model()), {}, {}, {}, 0., 0., std::move(first), 0.};
-  if(!result.first_fit.metrics.aborted)
+  if(result.first_fit.metrics.aborted)
+    result.status.aborted = true; // the model is the first fit's, as far as it went
+  else
   {
     result.status = evolution.run(visitor, callback);
     result.model = normalization.model_from_normalized(evolution.model());
