@@ -7,6 +7,8 @@
 
 #include <blended_shape_testing/synthetic_scans.h>
 
+#include <CGAL/Blended_shape/IO/Blended_shape_io.h>
+
 #include <CGAL/IO/polygon_soup_io.h>
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 
@@ -15,6 +17,7 @@
 #include <fstream>
 #include <map>
 #include <random>
+#include <sstream>
 #include <set>
 
 namespace BS = CGAL::Blended_shapes;
@@ -140,6 +143,16 @@ std::string read_file(const std::string& name)
   return s.str();
 }
 
+std::size_t count_of(const std::string& text, const std::string& what)
+{
+  std::size_t n = 0;
+  for(std::size_t at = text.find(what); at != std::string::npos; at = text.find(what, at + 1))
+    ++n;
+  return n;
+}
+
+bool exists(const std::string& file) { return std::ifstream(file).good(); }
+
 // 17 digits: every double is read back exactly.
 void write_points(const std::string& file, const std::vector<K::Point_3>& pts, double scale = 1.,
                   const K::Vector_3& offset = K::Vector_3(0., 0., 0.))
@@ -182,6 +195,8 @@ void test_bad_input(const Temp_dir& dir)
     {quote(dir / "five.xyz") + " --max-iterations 0", 2},
     {quote(dir / "five.xyz") + " --seed -3", 2},
     {quote(dir / "five.xyz") + " --mesh " + quote(dir / "m.stl"), 2},
+    {quote(dir / "five.xyz") + " --max-parts 0", 2},
+    {quote(dir / "five.xyz") + " --no-split --max-parts 3", 2},
     {quote(dir / "five.xyz") + " --json", 2},           // missing value
     {quote(dir / "a.xyz") + " " + quote(dir / "b.xyz"), 2}};
   for(const Case& c : cases)
@@ -207,20 +222,58 @@ void test_good_run(const Temp_dir& dir)
   write_points(dir / "cloud.xyz", BS::testing::synthetic_scan(model, 800, true, 0.002, rng));
   std::string err, out;
   const int code = run(quote(tool) + " " + quote(dir / "cloud.xyz") + " --mesh " + quote(dir / "m.ply") +
-                         " --hierarchy " + quote(dir / "h.dot") + " --model " + quote(dir / "model.json"),
+                         " --hierarchy " + quote(dir / "h.dot") + " --model " + quote(dir / "model.json") +
+                         " --trace " + quote(dir / "trace"),
                        dir, &err, &out);
   BS_CHECK(code == 0, "good run failed: " << err);
   BS_CHECK(err.find("iteration") != std::string::npos && err.find("parts") != std::string::npos, "no progress shown");
   Json_checker summary(out);
   BS_CHECK(summary.valid(), "the summary is not valid JSON:\n" << out);
   for(const char* key : {"points", "parameters", "iterations", "relative_rms", "rms_over_bbox_diagonal",
-                         "stray_points", "parts", "holes", "genus", "seconds", "model"})
+                         "stray_points", "parts", "holes", "genus", "evolution", "seconds", "model"})
     BS_CHECK(summary.keys.count(key) == 1, "missing key " << key);
-  BS_CHECK(summary.numbers["points"] == 800 && summary.numbers["parameters"] == 12, "points / parameters");
+  // A clean single superquadric: evolution tries splits and keeps none.
+  BS_CHECK(summary.numbers["points"] == 800 && summary.numbers["parameters"] == 12 && summary.numbers["parts"] == 1,
+           "points / parameters / parts: " << summary.numbers["points"] << " / " << summary.numbers["parameters"]
+                                           << " / " << summary.numbers["parts"]);
   BS_CHECK(summary.numbers["rms_over_bbox_diagonal"] < 0.01, "a poor fit of a clean superquadric");
+  const std::size_t events = count_of(out, "\"kind\": ");
+  BS_CHECK(out.find("\"events\": [") != std::string::npos && count_of(out, "\"kind\": \"split\"") == 0,
+           "the evolution events: " << out);
+  BS_CHECK(count_of(err, "blended_fit: event ") == events, "progress does not name the " << events << " events");
+  // The trace: the first fit, then the model after each event, as PLY and DOT.
+  BS_CHECK(exists(dir / "trace/00_first_fit.ply") && exists(dir / "trace/00_first_fit.dot"), "trace of the first fit");
+  for(std::size_t e = 1; e <= events; ++e)
+  {
+    const std::string stem = dir / ("trace/" + std::string(e < 10 ? "0" : "") + std::to_string(e) + "_undo");
+    std::vector<K::Point_3> points;
+    std::vector<std::vector<std::size_t>> faces;
+    BS_CHECK(CGAL::IO::read_polygon_soup(stem + ".ply", points, faces) && faces.size() > 100 &&
+               read_file(stem + ".dot").find("digraph") != std::string::npos,
+             "trace of event " << e);
+  }
   Json_checker model_file(read_file(dir / "model.json"));
-  BS_CHECK(model_file.valid() && model_file.keys.count("components") && model_file.keys.count("hierarchy"),
-           "model file");
+  BS_CHECK(model_file.valid() && model_file.keys.count("pose") && model_file.keys.count("shape"), "model file");
+  // Its shape is a model file of the package, and with its pose it is the fitted surface.
+  {
+    const std::string text = read_file(dir / "model.json");
+    const std::size_t at = text.find("\"shape\": ");
+    std::istringstream shape_text(at == std::string::npos ? std::string() : text.substr(at + 9, text.rfind('}') - at - 9));
+    bool readable = false;
+    try
+    {
+      readable = BS::read_blended_shape_json<K>(shape_text).number_of_components() == 1;
+    }
+    catch(const std::exception& e)
+    {
+      std::cerr << e.what() << std::endl;
+    }
+    BS_CHECK(readable, "the model file's shape does not read back");
+  }
+  // --no-split: one superquadric and no event.
+  BS_CHECK(run(quote(tool) + " " + quote(dir / "cloud.xyz") + " --quiet --no-split", dir, nullptr, &out) == 0 &&
+             Json_checker(out).valid() && out.find("\"events\": []") != std::string::npos,
+           "--no-split: " << out);
   BS_CHECK(read_file(dir / "h.dot").find("digraph") != std::string::npos, "hierarchy file");
   for(const char* mesh : {"m.ply", "m.off"})
   {
@@ -249,7 +302,7 @@ void test_strays(const Temp_dir& dir)
   BS::testing::add_stray_points(points, 200, 10., rng);
   write_points(dir / "strays.xyz", points);
   std::string out;
-  BS_CHECK(run(quote(tool) + " " + quote(dir / "strays.xyz") + " --quiet --strays " + quote(dir / "strays.txt"), dir,
+  BS_CHECK(run(quote(tool) + " " + quote(dir / "strays.xyz") + " --quiet --no-split --strays " + quote(dir / "strays.txt"), dir,
                nullptr, &out) == 0, "--strays");
   Json_checker summary(out);
   BS_CHECK(summary.valid(), "the summary is not valid JSON:\n" << out);
@@ -263,7 +316,7 @@ void test_strays(const Temp_dir& dir)
   BS_CHECK(summary.numbers["stray_points"] == double(listed) && strays_listed >= 195 && listed <= 202,
            "stray count " << summary.numbers["stray_points"] << ", " << listed << " listed, " << strays_listed
                           << " of them strays");
-  BS_CHECK(run(quote(tool) + " " + quote(dir / "strays.xyz") + " --quiet --no-robust", dir, nullptr, &out) == 0 &&
+  BS_CHECK(run(quote(tool) + " " + quote(dir / "strays.xyz") + " --quiet --no-split --no-robust", dir, nullptr, &out) == 0 &&
              Json_checker(out).valid(), "--no-robust");
   Json_checker plain(out);
   BS_CHECK(plain.valid() && plain.numbers["stray_points"] == 0., "--no-robust judged points stray");

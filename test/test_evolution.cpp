@@ -345,8 +345,19 @@ void test_bad_input()
 struct Counting_visitor : BS::Default_evolution_visitor
 {
   std::size_t splits = 0, undos = 0;
-  void on_split(const BS::Evolution_event& e) { splits += e.accepted() ? 1 : 1000; }
-  void on_undo(const BS::Evolution_event& e) { undos += e.accepted() ? 1000 : 1; }
+  std::size_t parts = 0; // of the model the last hook saw
+  template <class Model>
+  void on_split(const BS::Evolution_event& e, const Model& m)
+  {
+    splits += e.accepted() ? 1 : 1000;
+    parts = m.shape().number_of_components();
+  }
+  template <class Model>
+  void on_undo(const BS::Evolution_event& e, const Model& m)
+  {
+    undos += e.accepted() ? 1000 : 1;
+    parts = m.shape().number_of_components();
+  }
 };
 
 // Evolution of the fit of one superquadric to `points`.
@@ -402,8 +413,9 @@ void test_no_over_splitting()
                "an event kept (" << e.accepted() << ") against its description lengths "
                                  << e.description_length_before << " -> " << e.description_length_after);
     }
-    BS_CHECK(visitor.splits == 0 && visitor.undos == undone,
-             "the visitor heard of " << visitor.splits << " splits and " << visitor.undos << " undos, not 0 and " << undone);
+    BS_CHECK(visitor.splits == 0 && visitor.undos == undone && (undone == 0 || visitor.parts == 1),
+             "the visitor heard of " << visitor.splits << " splits and " << visitor.undos << " undos, not 0 and "
+                                     << undone << ", the last of a model of " << visitor.parts << " parts");
     std::cout << "  one superquadric, " << (single_view ? "single" : "full") << " view: "
               << evolution.events().size() << " splits tried and undone, " << status.iterations << " iterations"
               << std::endl;
@@ -548,15 +560,29 @@ void test_fit_blended_shape()
            "one superquadric: " << a.model.shape().number_of_components() << " parts, " << a.events.size()
                                 << " splits tried");
   for(const auto& e : a.events)
-    BS_CHECK(!e.accepted() && e.rms_before > 0. && std::abs(e.rms_before / a.rms - 1.) < 1e-12,
+    BS_CHECK(!e.accepted() && e.rms_before > 0. && e.rms_before < 2. * a.first_fit.metrics.rms,
              "an event of one superquadric: kept " << e.accepted() << ", RMS before " << e.rms_before
-                                                   << " against the result's " << a.rms);
+                                                   << " against the first fit's " << a.first_fit.metrics.rms);
+  // No split kept: fit_superquadric() (robust), bit for bit, with its
+  // figures and strays; evolution started from the least-squares fit.
+  const auto single = BS::fit_superquadric(points, BSP::number_of_threads(1));
+  const typename BS::Blended_fit_result<K>::Model robust(BS::Blended_shape<K>(single.model.shape()),
+                                                         single.model.translation(), single.model.quaternion());
+  BS_CHECK(BS::testing::same_bits(a.model.parameters(), robust.parameters()) &&
+             a.metrics.rms == single.metrics.rms && a.stray_points == single.stray_points &&
+             a.metrics.iterations == a.first_fit.metrics.iterations + a.status.iterations + single.metrics.iterations,
+           "one superquadric: the result is not fit_superquadric()'s");
+  const auto least_squares = BS::fit_superquadric(points, BSP::robust_weighting(BS::Robust_weighting::None));
+  BS_CHECK(BS::testing::same_bits(a.first_fit.model.parameters(), least_squares.model.parameters()),
+           "evolution did not start from the least-squares fit");
   std::cout << "  fit_blended_shape, one superquadric: " << a.events.size() << " splits tried and undone, RMS "
-            << a.rms << " (" << a.rms_over_bbox_diagonal << " of the diagonal)" << std::endl;
+            << a.metrics.rms << " (" << a.metrics.rms_over_bbox_diagonal << " of the diagonal)" << std::endl;
 
   const auto limited = BS::fit_blended_shape(points, BSP::maximum_number_of_parts(std::size_t(1)));
-  BS_CHECK(limited.events.empty() && limited.status.part_limit_reached,
-           "maximum_number_of_parts(1) did not reach evolution");
+  BS_CHECK(limited.events.empty() && limited.status.part_limit_reached &&
+             BS::testing::same_bits(limited.model.parameters(), robust.parameters()) &&
+             BS::testing::same_bits(limited.first_fit.model.parameters(), single.model.parameters()),
+           "maximum_number_of_parts(1): a split tried, or not the fit of fit_superquadric()");
 
   const auto b = fit(points, 2);
   bool same = BS::testing::same_bits(a.model.parameters(), b.model.parameters()) && a.events.size() == b.events.size();
@@ -576,9 +602,9 @@ void test_fit_blended_shape()
     BS_CHECK(c.model.shape().number_of_components() == 1,
              (rotated ? "rotated" : "scaled and moved") << " input: " << c.model.shape().number_of_components() << " parts");
     if(!rotated)
-      BS_CHECK(std::abs(c.rms_over_bbox_diagonal / a.rms_over_bbox_diagonal - 1.) <= 1e-6,
-               "scaled and moved input: RMS/diagonal " << c.rms_over_bbox_diagonal << " instead of "
-                                                       << a.rms_over_bbox_diagonal);
+      BS_CHECK(std::abs(c.metrics.rms_over_bbox_diagonal / a.metrics.rms_over_bbox_diagonal - 1.) <= 1e-6,
+               "scaled and moved input: RMS/diagonal " << c.metrics.rms_over_bbox_diagonal << " instead of "
+                                                       << a.metrics.rms_over_bbox_diagonal);
   }
 
   // Stopped at once: in the first fit, which the result holds, with no event.

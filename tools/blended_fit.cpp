@@ -1,14 +1,19 @@
 // SPDX-License-Identifier: LGPL-3.0-or-later
-// blended_fit: fit a model to a point cloud and report it as JSON.
+// blended_fit: fit a blended model to a point cloud (part evolution,
+// fit_blended_shape()) and report it as JSON.
 #include "internal/command_line.h"
 
-#include <CGAL/Blended_shape/Fitting/fit_superquadric.h>
-#include <CGAL/Blended_shape/internal/write_file_atomically.h>
+#include <CGAL/Blended_shape/Blending/Blended_shape_mesh.h>
+#include <CGAL/Blended_shape/Blending/Blending_hierarchy.h>
+#include <CGAL/Blended_shape/Evolution/fit_blended_shape.h>
+#include <CGAL/Blended_shape/IO/Blended_shape_io.h>
+#include <CGAL/Blended_shape/IO/Blended_shape_mesh_io.h>
 #include <CGAL/Blended_shape/IO/read_points.h>
+#include <CGAL/Blended_shape/internal/write_file_atomically.h>
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 
-#include <cmath>
+#include <filesystem>
 #include <iomanip>
 #include <iostream>
 #include <sstream>
@@ -17,173 +22,205 @@
 namespace BS = CGAL::Blended_shapes;
 namespace tools = blended_shape_tools;
 typedef CGAL::Exact_predicates_inexact_constructions_kernel K;
-typedef BS::Fit_result<K> Result;
+typedef BS::Blended_fit_result<K> Result;
+typedef Result::Model Model;
+typedef BS::internal::Json Json;
 
 namespace {
 
 const char* usage =
   "Usage: blended_fit INPUT [options]\n"
   "Fit a blended-shape model to the point cloud INPUT (.xyz .pts .pwn .txt .ply .off .obj .stl)\n"
-  "and print a JSON summary on stdout.\n"
+  "and print a JSON summary on stdout: one superquadric first, then parts split off where the\n"
+  "forces at rest say it cannot fit the data, each kept only if it pays for its parameters\n"
+  "(the JSON's 'evolution' lists every split tried).\n"
   "\n"
   "Options:\n"
   "  --json FILE          write the JSON summary to FILE instead of stdout\n"
   "  --mesh FILE          write the model's component pieces (sec. 3.3 of the paper) as\n"
-  "                       FILE.ply (coloured by component) or FILE.off\n"
+  "                       FILE.ply (binary, faces coloured by component) or FILE.off\n"
   "  --hierarchy FILE     write the blending hierarchy as Graphviz DOT\n"
-  "  --model FILE         write the model (components, parameters, hierarchy) as JSON\n"
-  "  --no-split           do not add parts (this release never does: see the JSON 'evolution')\n"
+  "  --model FILE         write the model as JSON: its pose and its blended shape (a model\n"
+  "                       file as read_blended_shape() reads, in the model's own frame)\n"
+  "  --no-split           one superquadric: no part evolution\n"
+  "  --max-parts N        at most N parts (default 8; 1 is --no-split)\n"
+  "  --trace DIR          write, as the fit goes, the model after each split tried (kept or\n"
+  "                       undone), then the first fit and the final model, to DIR (created if\n"
+  "                       missing): NN_KIND.ply (pieces coloured by component) and NN_KIND.dot\n"
+  "                       (hierarchy), KIND first_fit, split, undo or final\n"
   "  --no-holes           do not add holes (this release never does)\n"
-  "  --max-iterations N   iteration limit (default 100)\n"
+  "  --max-iterations N   iteration limit of each fit to rest (default 100)\n"
   "  --seed N             random seed for the point subsets (default 0)\n"
-  "  --strays FILE        write the indices (from 0, in input order) of the points judged\n"
-  "                       stray, one a line\n"
-  "  --robust             down-weight stray points (the default: a Gaussian and uniform\n"
-  "                       mixture, see the manual)\n"
+  "  --strays FILE        write the indices (from 0, in input order) of the points the model\n"
+  "                       leaves out (stray or isolated), one a line\n"
+  "  --robust             a one-part result down-weights stray points (the default: a Gaussian\n"
+  "                       and uniform mixture, see the manual); evolution fits the points that\n"
+  "                       are not isolated by least squares\n"
   "  --no-robust          the paper's plain least squares: every point pulls alike\n"
   "  --explicit           use the paper's explicit integrator instead of Gauss-Newton\n"
   "  --threads N          threads of the fit (default 0: all cores); the result does not depend on it\n"
   "  --quiet              no progress on stderr\n"
   "  --help               this text\n"
   "Exit code 0 on success, 1 on a failure (unreadable input, ...), 2 on a command-line mistake.\n"
-  "No output file is written unless the fit succeeds.\n";
+  "No output file is written unless the fit succeeds (the --trace files are written as it goes).\n";
 
-// Finite numbers only: JSON has no NaN, and a model never should.
-std::string number(double x)
+// JSON numbers must be finite, and a model's always are: anything else is a bug.
+Json number(double x)
 {
   if(!std::isfinite(x))
     throw std::runtime_error("internal error: a non-finite number in the result");
-  std::ostringstream s;
-  s << std::setprecision(17) << x;
-  return s.str();
+  return Json(x);
 }
 
-std::string escape(const std::string& text)
+Json numbers(const double* x, std::size_t n)
 {
-  std::string out;
-  for(char c : text)
-  {
-    if(c == '"' || c == '\\') { out += '\\'; out += c; }
-    else if(static_cast<unsigned char>(c) < 0x20) { out += ' '; }
-    else out += c;
-  }
-  return out;
+  Json a = Json::array();
+  for(std::size_t i = 0; i < n; ++i)
+    a.push_back(number(x[i]));
+  return a;
 }
 
-// The model: its one component (a superquadric ellipsoid), its pose, and the hierarchy.
-void write_model(std::ostream& out, const Result::Model& model, const std::string& indent)
+// The model: its pose (x = c + R s) and its blended shape in its own frame.
+Json model_json(const Model& model)
 {
-  const auto q = model.parameters();
-  out << "{\n" << indent << "  \"components\": [\n"
-      << indent << "    {\"id\": 0, \"name\": \"body\", \"primitive\": \"superquadric_ellipsoid\", \"parameters\": {";
-  for(std::size_t i = Result::Model::number_of_pose_parameters; i < model.number_of_parameters(); ++i)
-    out << (i > Result::Model::number_of_pose_parameters ? ", " : "") << '"' << model.parameter_name(i)
-        << "\": " << number(q[Eigen::Index(i)]);
-  out << "}}\n" << indent << "  ],\n"
-      << indent << "  \"pose\": {\"translation\": [" << number(q[0]) << ", " << number(q[1]) << ", " << number(q[2])
-      << "], \"quaternion_wxyz\": [" << number(q[3]) << ", " << number(q[4]) << ", " << number(q[5]) << ", "
-      << number(q[6]) << "]},\n"
-      << indent << "  \"blends\": [],\n"
-      << indent << "  \"hierarchy\": {\"nodes\": [{\"id\": 0, \"kind\": \"primitive\", \"component\": 0}], \"edges\": []}\n"
-      << indent << "}";
+  Json pose = Json::object();
+  pose["translation"] = numbers(model.translation().data(), 3);
+  pose["quaternion_wxyz"] = numbers(model.quaternion().data(), 4);
+  Json m = Json::object();
+  m["pose"] = pose;
+  m["shape"] = BS::internal::blended_shape_to_json(model.shape());
+  return m;
 }
 
-void write_summary(std::ostream& out, const Result& r, const std::string& input, bool no_split, bool no_holes)
+Json event_json(const BS::Evolution_event& e)
+{
+  Json j = Json::object();
+  j["kind"] = e.accepted() ? "split" : "undo";
+  j["iteration"] = double(e.iteration);
+  j["component"] = double(e.component);
+  j["new_component"] = double(e.new_component);
+  j["boundary"] = double(e.boundary);
+  Json region = Json::object();
+  region["chart"] = double(e.proposal.chart);
+  region["ellipse"] = numbers(e.proposal.region.data(), std::size_t(e.proposal.region.size()));
+  region["half_width"] = number(e.proposal.half_width);
+  j["region"] = region;
+  j["rms_before"] = number(e.rms_before);
+  j["rms_after"] = number(e.rms_after);
+  j["description_length_before"] = number(e.description_length_before);
+  j["description_length_after"] = number(e.description_length_after);
+  j["accepted"] = e.accepted();
+  return j;
+}
+
+const char* end_of_evolution(const Result& r, bool no_split)
+{
+  if(no_split) return "not run (--no-split)";
+  if(r.status.aborted) return "stopped";
+  if(r.status.part_limit_reached) return "part limit reached";
+  if(r.status.target_reached) return "target accuracy reached";
+  return "no split paid for its parameters";
+}
+
+std::string summary_text(const Result& r, const std::string& input, bool no_split, std::size_t max_parts)
 {
   const BS::Fit_metrics& m = r.metrics;
-  out << "{\n"
-      << "  \"input\": \"" << escape(input) << "\",\n"
-      << "  \"points\": " << m.number_of_points << ",\n"
-      << "  \"parameters\": " << m.number_of_parameters << ",\n"
-      << "  \"iterations\": " << m.iterations << ",\n"
-      << "  \"converged\": " << (m.converged ? "true" : "false") << ",\n"
-      << "  \"relative_rms\": [" << number(m.relative_rms[0]) << ", " << number(m.relative_rms[1]) << ", "
-      << number(m.relative_rms[2]) << "],\n"
-      << "  \"rms\": " << number(m.rms) << ",\n"
-      << "  \"rms_over_bbox_diagonal\": " << number(m.rms_over_bbox_diagonal) << ",\n"
-      << "  \"stray_points\": " << m.number_of_stray_points << ",\n"
-      << "  \"parts\": 1,\n"
-      << "  \"holes\": 0,\n"
-      << "  \"genus\": 0,\n"
-      << "  \"genus_source\": \"topology of the model: one closed primitive (the unified mesh comes with blending)\",\n"
-      << "  \"evolution\": {\"splits_enabled\": false, \"holes_enabled\": false, \"requested_no_split\": "
-      << (no_split ? "true" : "false") << ", \"requested_no_holes\": " << (no_holes ? "true" : "false")
-      << ", \"note\": \"part splitting and hole evolution are not implemented in this release; "
-         "the model is a single superquadric\"},\n"
-      << "  \"seconds\": " << number(m.seconds) << ",\n"
-      << "  \"model\": ";
-  write_model(out, r.model, "  ");
-  out << "\n}\n";
+  Json s = Json::object();
+  s["input"] = input;
+  s["points"] = double(r.first_fit.metrics.number_of_points);
+  s["parameters"] = double(r.model.number_of_parameters());
+  s["iterations"] = double(m.iterations);
+  s["converged"] = m.converged;
+  s["relative_rms"] = numbers(m.relative_rms.data(), 3);
+  s["rms"] = number(m.rms);
+  s["rms_over_bbox_diagonal"] = number(m.rms_over_bbox_diagonal);
+  s["stray_points"] = double(r.stray_points.size());
+  s["parts"] = double(r.number_of_parts());
+  s["holes"] = double(r.model.shape().holes().size());
+  s["genus"] = double(r.model.shape().genus());
+  Json evolution = Json::object();
+  evolution["splits_enabled"] = !no_split;
+  evolution["holes_enabled"] = false;
+  evolution["maximum_parts"] = double(max_parts);
+  evolution["ended"] = end_of_evolution(r, no_split);
+  evolution["splits_kept"] = double(r.number_of_splits());
+  Json events = Json::array();
+  for(const BS::Evolution_event& e : r.events)
+    events.push_back(event_json(e));
+  evolution["events"] = events;
+  s["evolution"] = evolution;
+  s["seconds"] = number(m.seconds);
+  s["model"] = model_json(r.model);
+  std::ostringstream out;
+  BS::internal::write_json(out, s);
+  return out.str();
 }
 
-// The component pieces: each chart's faces that are not wholly in the part of
-// the chart that the other chart owns (sec. 3.3: overlapping pieces).
-void write_pieces(std::ostream& out, const Result& r, const std::string& format)
+BS::Blended_shape_pieces<K> pieces_of(const Model& model)
 {
-  std::vector<K::Point_3> points;
-  std::vector<std::array<std::size_t, 4>> faces; // 3 vertices + chart
-  for(const auto& cm : r.meshes)
-  {
-    const std::size_t base = points.size();
-    for(auto v : cm.mesh().vertices())
-      points.push_back(cm.mesh().point(v));
-    for(auto f : cm.mesh().faces())
-    {
-      const auto v = cm.face_vertices(f);
-      bool kept = false;
-      for(auto vd : v)
-        kept = kept || r.model.canonical_chart_point(cm.chart_point(vd)).chart == cm.chart_index();
-      if(kept)
-        faces.push_back({{base + std::size_t(v[0]), base + std::size_t(v[1]), base + std::size_t(v[2]), cm.chart_index()}});
-    }
-  }
-  out << std::setprecision(17);
-  if(format == "off")
-  {
-    out << "OFF\n" << points.size() << ' ' << faces.size() << " 0\n";
-    for(const auto& p : points) out << p << '\n';
-    for(const auto& f : faces) out << "3 " << f[0] << ' ' << f[1] << ' ' << f[2] << '\n';
-    return;
-  }
-  static const int colours[2][3] = {{200, 120, 60}, {60, 140, 200}};
-  out << "ply\nformat ascii 1.0\ncomment blended_fit component pieces, coloured by chart\n"
-      << "element vertex " << points.size() << "\nproperty double x\nproperty double y\nproperty double z\n"
-      << "element face " << faces.size() << "\nproperty list uchar int vertex_indices\n"
-      << "property uchar red\nproperty uchar green\nproperty uchar blue\nend_header\n";
-  for(const auto& p : points) out << p << '\n';
-  for(const auto& f : faces)
-  {
-    const int* c = colours[f[3] % 2];
-    out << "3 " << f[0] << ' ' << f[1] << ' ' << f[2] << ' ' << c[0] << ' ' << c[1] << ' ' << c[2] << '\n';
-  }
+  return BS::Blended_shape_pieces<K>(model.shape(), 24, [&model](const K::Point_3& p) { return model.placed(p); });
 }
 
-struct Progress : BS::Default_fitting_visitor
+// `model`'s pieces and hierarchy as DIR/NN_KIND.ply and DIR/NN_KIND.dot.
+void write_trace(const std::string& dir, std::size_t index, const std::string& kind, const Model& model)
 {
+  std::ostringstream name;
+  name << dir << '/' << std::setw(2) << std::setfill('0') << index << '_' << kind;
+  // ASCII: easy to read for scripts (scripts/render_trace.py)
+  BS::write_blended_shape_pieces_ply(name.str() + ".ply", pieces_of(model), CGAL::parameters::use_binary_mode(false));
+  BS::internal::write_file_atomically(name.str() + ".dot",
+                                      [&](std::ostream& o) { BS::write_blending_hierarchy_dot(o, model.shape()); });
+}
+
+// Progress on stderr (unless quiet) and the trace (if a directory is given).
+struct Reporter : BS::Default_evolution_visitor
+{
+  bool quiet = false;
+  std::string trace;
+  std::size_t events = 0, parts = 1;
+
   void on_phase(BS::Fitting_phase p, std::size_t it) const
   {
-    std::cerr << "blended_fit: phase " << BS::phase_name(p) << " (iteration " << it << ")\n";
+    if(!quiet)
+      std::cerr << "blended_fit: phase " << BS::phase_name(p) << " (iteration " << it << ")\n";
   }
   void on_iteration(std::size_t it, double energy, std::size_t n) const
   {
-    std::cerr << "blended_fit: iteration " << it << "  energy " << energy << "  points " << n
-              << "  parts 1  holes 0\n";
+    if(!quiet)
+      std::cerr << "blended_fit: iteration " << it << "  energy " << energy << "  points " << n << "  parts " << parts
+                << "  holes 0\n";
+  }
+  template <class M>
+  void on_split(const BS::Evolution_event& e, const M& model) { event(e, model); }
+  template <class M>
+  void on_undo(const BS::Evolution_event& e, const M& model) { event(e, model); }
+
+private:
+  void event(const BS::Evolution_event& e, const Model& model)
+  {
+    parts = model.shape().number_of_components();
+    ++events;
+    if(!quiet)
+      std::cerr << "blended_fit: event " << events << ": split of component " << e.component << " "
+                << (e.accepted() ? "kept" : "undone") << " (RMS " << e.rms_before << " -> " << e.rms_after
+                << ", description length " << e.description_length_before << " -> " << e.description_length_after
+                << "); " << parts << (parts == 1 ? " part" : " parts") << "\n";
+    if(!trace.empty())
+      write_trace(trace, events, e.accepted() ? "split" : "undo", model);
   }
 };
-
-struct Silent : BS::Default_fitting_visitor {};
 
 } // namespace
 
 int main(int argc, char** argv)
 {
   const auto options = tools::known_options({"--json", "--mesh", "--hierarchy", "--model", "--max-iterations", "--seed",
-                                              "--threads", "--strays"},
+                                              "--threads", "--strays", "--max-parts", "--trace"},
                                              {"--no-split", "--no-holes", "--quiet", "--robust", "--no-robust", "--explicit"});
   return tools::run_tool("blended_fit", usage, argc, argv, options, [](const tools::Command_line& line) {
-    std::string input, json, mesh, hierarchy, model_file, strays;
-    bool no_split = false, no_holes = false, quiet = false, robust = true, explicit_integrator = false;
-    std::size_t iterations = 100, threads = 0;
+    std::string input, json, mesh, hierarchy, model_file, strays, trace;
+    bool no_split = false, quiet = false, robust = true, explicit_integrator = false, max_parts_given = false;
+    std::size_t iterations = 100, threads = 0, max_parts = BS::Evolution_settings().maximum_number_of_parts;
     unsigned int seed = 0;
     for(const tools::Option& o : line.options)
     {
@@ -192,13 +229,20 @@ int main(int argc, char** argv)
       else if(a == "--mesh") mesh = o.value;
       else if(a == "--hierarchy") hierarchy = o.value;
       else if(a == "--model") model_file = o.value;
+      else if(a == "--trace") trace = o.value;
       else if(a == "--no-split") no_split = true;
-      else if(a == "--no-holes") no_holes = true;
       else if(a == "--quiet") quiet = true;
       else if(a == "--robust") robust = true;
       else if(a == "--no-robust") robust = false;
       else if(a == "--strays") strays = o.value;
       else if(a == "--explicit") explicit_integrator = true;
+      else if(a == "--max-parts")
+      {
+        max_parts = std::size_t(tools::parse_integer(a, o.value));
+        max_parts_given = true;
+        if(max_parts == 0 || max_parts > 1000)
+          throw tools::Usage_error("--max-parts must be in [1, 1000]");
+      }
       else if(a == "--max-iterations")
       {
         iterations = std::size_t(tools::parse_integer(a, o.value));
@@ -226,6 +270,10 @@ int main(int argc, char** argv)
       throw tools::Usage_error("no input point cloud given");
     if(!mesh.empty() && tools::extension_of(mesh) != "ply" && tools::extension_of(mesh) != "off")
       throw tools::Usage_error("--mesh: '" + mesh + "' must end in .ply or .off");
+    if(no_split && max_parts_given && max_parts != 1)
+      throw tools::Usage_error("--no-split and --max-parts " + std::to_string(max_parts) + " contradict; give one");
+    if(no_split)
+      max_parts = 1;
 
     std::vector<K::Point_3> points;
     const BS::Read_report read = BS::read_points(input, points);
@@ -233,32 +281,66 @@ int main(int argc, char** argv)
       std::cerr << "blended_fit: read " << read.points_read << " points from '" << input << "'"
                 << (read.non_finite_dropped ? " (dropped " + std::to_string(read.non_finite_dropped) +
                                                 " with non-finite coordinates)" : std::string()) << "\n";
-    auto np = BS::parameters::number_of_threads(threads,
-                BS::parameters::robust_weighting(robust ? BS::Robust_weighting::Mixture : BS::Robust_weighting::None,
-                BS::parameters::integrator(explicit_integrator ? BS::Integrator::Explicit : BS::Integrator::Gauss_newton)))
-                .number_of_iterations(iterations)
-                .random_seed(seed);
-    const Result result = quiet ? BS::fit_superquadric(points, np.visitor(Silent()))
-                                : BS::fit_superquadric(points, np.visitor(Progress()));
+    if(!trace.empty())
+    {
+      std::error_code ec;
+      std::filesystem::create_directories(trace, ec);
+      if(!std::filesystem::is_directory(trace))
+        throw std::runtime_error("--trace: cannot create the directory '" + trace + "'" +
+                                 (ec ? " (" + ec.message() + ")" : std::string()) + "; check the path and permissions");
+    }
+    Reporter reporter;
+    reporter.quiet = quiet;
+    reporter.trace = trace;
+    const Result result = BS::fit_blended_shape(
+      points,
+      BS::parameters::maximum_number_of_parts(max_parts,
+        BS::parameters::number_of_threads(threads,
+        BS::parameters::robust_weighting(robust ? BS::Robust_weighting::Mixture : BS::Robust_weighting::None,
+        BS::parameters::integrator(explicit_integrator ? BS::Integrator::Explicit : BS::Integrator::Gauss_newton))))
+        .number_of_iterations(iterations)
+        .random_seed(seed)
+        .visitor(reporter));
+    if(!trace.empty())
+    {
+      write_trace(trace, 0, "first_fit", Model(BS::Blended_shape<K>(result.first_fit.model.shape()),
+                                               result.first_fit.model.translation(),
+                                               result.first_fit.model.quaternion()));
+      write_trace(trace, result.events.size() + 1, "final", result.model);
+    }
+    if(!quiet)
+      std::cerr << "blended_fit: " << result.number_of_parts() << (result.number_of_parts() == 1 ? " part" : " parts")
+                << ", genus " << result.model.shape().genus() << ", RMS " << result.metrics.rms << " ("
+                << 100. * result.metrics.rms_over_bbox_diagonal << " % of the diagonal), "
+                << result.metrics.seconds << " s\n";
 
     // Everything is formatted before anything is written: no half outputs.
-    std::ostringstream summary;
-    write_summary(summary, result, input, no_split, no_holes);
+    const std::string summary = summary_text(result, input, no_split, max_parts);
     if(!mesh.empty())
-      BS::internal::write_file_atomically(mesh, [&](std::ostream& o) { write_pieces(o, result, tools::extension_of(mesh)); });
+    {
+      const auto pieces = pieces_of(result.model);
+      if(tools::extension_of(mesh) == "ply")
+        BS::write_blended_shape_pieces_ply(mesh, pieces);
+      else
+        BS::write_unified_mesh_off(mesh, pieces.merged_mesh());
+    }
     if(!hierarchy.empty())
       BS::internal::write_file_atomically(hierarchy, [&](std::ostream& o) {
-        o << "digraph blending_hierarchy {\n  node [shape=box];\n  n0 [label=\"body\\nsuperquadric ellipsoid\"];\n}\n";
+        BS::write_blending_hierarchy_dot(o, result.model.shape());
       });
     if(!strays.empty())
       BS::internal::write_file_atomically(strays, [&](std::ostream& o) {
         for(std::size_t i : result.stray_points) o << i << '\n';
       });
     if(!model_file.empty())
-      BS::internal::write_file_atomically(model_file, [&](std::ostream& o) { write_model(o, result.model, ""); o << "\n"; });
+    {
+      std::ostringstream text;
+      BS::internal::write_json(text, model_json(result.model));
+      BS::internal::write_file_atomically(model_file, [&](std::ostream& o) { o << text.str(); });
+    }
     if(json.empty())
-      std::cout << summary.str() << std::flush;
+      std::cout << summary << std::flush;
     else
-      BS::internal::write_file_atomically(json, [&](std::ostream& o) { o << summary.str(); });
+      BS::internal::write_file_atomically(json, [&](std::ostream& o) { o << summary; });
   });
 }

@@ -8,8 +8,11 @@ cmake with the package's dependencies for the helper program. From anywhere:
     /usr/bin/python3 doc/Blended_shape/fig/scripts/make_figures.py [--blended-fit PATH]
 
 It builds chart_mesh_dump.cpp (this directory) in a temporary build tree, not
-in the package build, and runs `blended_fit` (default: build/bin/blended_fit of
-the source tree; build it first) on the bundled mug scan for the last figure.
+in the package build, and runs `blended_fit --trace` (default:
+build/bin/blended_fit of the source tree; build it, blended_scan and
+blended_make_object first) on the bundled mug scan and on a scan of the
+box/cylinder CAD object for the picture sequences of part evolution; the
+final hierarchy is drawn by Graphviz's dot if it is installed.
 """
 
 import argparse
@@ -167,36 +170,94 @@ def read_ascii_ply(path):
     return v, np.array(faces), colours
 
 
-def figure_mug(blended_fit, path):
-    scan = os.path.join(ROOT, "data", "scans", "pcl_mug_scan.xyz")
+def trace_sequence(trace_dir):
+    """The models of a `blended_fit --trace` directory worth drawing: the first
+    fit, the model after each kept split and the final model, as (title, ply
+    path, dot path)."""
+    steps = []
+    for name in sorted(os.listdir(trace_dir)):
+        stem, ext = os.path.splitext(name)
+        if ext != ".ply":
+            continue
+        index, kind = stem.split("_", 1)
+        if kind == "first_fit":
+            steps.append(("first fit: one superquadric", stem))
+        elif kind == "split":
+            steps.append(("event %d: split kept" % int(index), stem))
+        elif kind == "final":
+            if steps and steps[-1][0].endswith("split kept"):
+                steps[-1] = (steps[-1][0] + " (final)", steps[-1][1])  # the last split kept is the result
+            else:
+                steps.append(("final model: one superquadric (no split kept)", stem))
+    return [(t, os.path.join(trace_dir, s + ".ply"), os.path.join(trace_dir, s + ".dot")) for t, s in steps]
+
+
+def render_dot(dot_path, png_path):
+    """The hierarchy drawn by Graphviz's dot, if it is installed."""
+    try:
+        subprocess.run(["dot", "-Tpng", "-Gdpi=80", dot_path, "-o", png_path], check=True)
+        return True
+    except (OSError, subprocess.CalledProcessError):
+        return False
+
+
+def figure_evolution(blended_fit, scan, path, title, view, elev, azim, extra=()):
+    """The scan, the first fit, the model after each kept split and the final
+    hierarchy, from `blended_fit --trace` (the manual's picture sequence)."""
     with tempfile.TemporaryDirectory() as tmp:
-        ply = os.path.join(tmp, "mug_fit.ply")
-        subprocess.run([blended_fit, scan, "--mesh", ply, "--quiet"], check=True, stdout=subprocess.DEVNULL)
-        v, faces, colours = read_ascii_ply(ply)
+        trace = os.path.join(tmp, "trace")
+        subprocess.run([blended_fit, scan, "--trace", trace, "--quiet"] + list(extra), check=True,
+                       stdout=subprocess.DEVNULL)
+        steps = trace_sequence(trace)
+        models = [(t, read_ascii_ply(ply)) for t, ply, _ in steps]
+        hierarchy_png = os.path.join(tmp, "hierarchy.png")
+        # one part: no hierarchy worth drawing
+        has_hierarchy = any("split kept" in t for t, _, _ in steps) and render_dot(steps[-1][2], hierarchy_png)
+        hierarchy = plt.imread(hierarchy_png) if has_hierarchy else None
     pts = np.loadtxt(scan, usecols=(0, 1, 2))
     rng = np.random.default_rng(0)
-    pts = pts[rng.choice(len(pts), size=min(4000, len(pts)), replace=False)]
-    # Scanner frame: the camera looks along +z with y down. Show it with z as depth
-    # and -y up, seen from the camera's side.
-    def view(p):
-        return np.column_stack([p[:, 0], p[:, 2], -p[:, 1]])
-    vv, pp = view(v), view(pts)
-    fig = plt.figure(figsize=(10, 4.8))
-    for k, (title, with_model) in enumerate([("the scan (one stereo view, 16234 points)", False),
-                                             ("fitted superquadric (blended_fit) and the scan", True)]):
-        ax = fig.add_subplot(1, 2, k + 1, projection="3d")
-        if with_model:
-            add_surface(ax, [vv[f] for f in faces], colours, alpha=0.25, edge=(0, 0, 0, 0.06))
-        ax.scatter(pp[:, 0], pp[:, 1], pp[:, 2], s=0.6, c="k" if not with_model else "darkred", depthshade=False)
-        equal_axes(ax, np.vstack([pp, vv]) if with_model else pp)
-        ax.view_init(elev=20, azim=-110)
-        ax.set_title(title, fontsize=10)
+    pts = view(pts[rng.choice(len(pts), size=min(4000, len(pts)), replace=False)])
+    panels = 1 + len(models) + (1 if hierarchy is not None else 0)
+    fig = plt.figure(figsize=(3.4 * panels, 3.8))
+    ax = fig.add_subplot(1, panels, 1, projection="3d")
+    ax.scatter(pts[:, 0], pts[:, 1], pts[:, 2], s=0.5, c="k", depthshade=False)
+    ax.set_title("the scan (%d points)" % len(np.loadtxt(scan, usecols=(0,))), fontsize=9)
+    boxes = [pts]
+    axes = [ax]
+    for k, (t, (v, faces, colours)) in enumerate(models):
+        ax = fig.add_subplot(1, panels, k + 2, projection="3d")
+        vv = view(v)
+        add_surface(ax, [vv[f] for f in faces], colours, alpha=0.35, edge=(0, 0, 0, 0.04))
+        ax.scatter(pts[:, 0], pts[:, 1], pts[:, 2], s=0.3, c="darkred", depthshade=False)
+        ax.set_title(t, fontsize=9)
+        axes.append(ax)
+    for ax in axes:
+        equal_axes(ax, np.vstack(boxes))
+        ax.view_init(elev=elev, azim=azim)
         ax.set_axis_off()
-    fig.suptitle("data/scans/pcl_mug_scan.xyz: this release fits one superquadric to the whole mug; "
-                 "parts and the handle's hole need blending", fontsize=10)
+    if hierarchy is not None:
+        ax = fig.add_subplot(1, panels, panels)
+        ax.imshow(hierarchy)
+        ax.set_title("final blending hierarchy", fontsize=9)
+        ax.set_axis_off()
+    fig.suptitle(title, fontsize=10)
     fig.tight_layout()
-    fig.savefig(path, dpi=110)
+    fig.savefig(path, dpi=100)
     plt.close(fig)
+
+
+def scanner_view(p):
+    """Scanner frame (the camera looks along +z with y down): z as depth, -y up."""
+    return np.column_stack([p[:, 0], p[:, 2], -p[:, 1]])
+
+
+def box_cylinder_scan(bin_dir, tmp):
+    """The box/cylinder CAD object scanned from the default view (as benchmark/evolve_parts)."""
+    mesh, scan = os.path.join(tmp, "box_cylinder.off"), os.path.join(tmp, "box_cylinder.xyz")
+    subprocess.run([os.path.join(bin_dir, "blended_make_object"), "box_cylinder", "-o", mesh], check=True,
+                   stdout=subprocess.DEVNULL)
+    subprocess.run([os.path.join(bin_dir, "blended_scan"), mesh, "-o", scan], check=True, stdout=subprocess.DEVNULL)
+    return scan
 
 
 def main():
@@ -210,9 +271,18 @@ def main():
         figure_chart_tessellation(helper, os.path.join(FIG, "chart_tessellation.png"))
         figure_superquadric(helper, os.path.join(FIG, "superquadric_charts.png"))
     if os.path.exists(args.blended_fit):
-        figure_mug(args.blended_fit, os.path.join(FIG, "mug_fit.png"))
+        figure_evolution(args.blended_fit, os.path.join(ROOT, "data", "scans", "pcl_mug_scan.xyz"),
+                         os.path.join(FIG, "mug_fit.png"),
+                         "blended_fit on data/scans/pcl_mug_scan.xyz (one stereo view): part evolution",
+                         scanner_view, 20, -110)
+        with tempfile.TemporaryDirectory() as tmp:
+            scan = box_cylinder_scan(os.path.dirname(args.blended_fit), tmp)
+            figure_evolution(args.blended_fit, scan, os.path.join(FIG, "box_cylinder_evolution.png"),
+                             "blended_fit on the box/cylinder CAD object scanned from one view (Fig. 19 of the paper)",
+                             lambda p: p, 20, -60)
     else:
-        print("make_figures.py: %s not found, mug_fit.png not updated (build blended_fit first)"
+        print("make_figures.py: %s not found, mug_fit.png and box_cylinder_evolution.png not updated "
+              "(build blended_fit, blended_scan and blended_make_object first)"
               % args.blended_fit, file=sys.stderr)
     return 0
 

@@ -52,8 +52,18 @@ public:
     std::vector<bool> retained; ///< per face index: whether the face is kept (not wholly discarded)
   };
 
-  /// Tessellates every chart of every component at `resolution` and positions the pieces.
-  Blended_shape_pieces(const Shape& shape, int resolution) : m_resolution(resolution) { update(shape); }
+  /// Where a point of the shape's own frame goes (e.g. the pose of a fitted model).
+  typedef std::function<typename GeomTraits::Point_3(const typename GeomTraits::Point_3&)> Placement;
+
+  /// Tessellates every chart of every component at `resolution` and
+  /// positions the pieces: at the shape's points, or, with `placement`, at
+  /// their images (as for the pieces of a `Deformable_blended_model`, whose
+  /// shape is placed by its pose).
+  Blended_shape_pieces(const Shape& shape, int resolution, Placement placement = Placement())
+    : m_resolution(resolution), m_placement(std::move(placement))
+  {
+    update(shape);
+  }
 
   /// Recomputes positions and classification; re-tessellates if the structure changed.
   void update(const Shape& shape)
@@ -77,7 +87,10 @@ public:
       std::vector<bool> on(m.number_of_vertices());
       for(auto v : m.vertices())
         on[std::size_t(v)] = shape.is_on_surface(Shape_point(p.component, p.mesh.chart_point(v)));
-      p.mesh.set_positions([&](const Chart_point& u) { return shape.point(Shape_point(p.component, u)); });
+      p.mesh.set_positions([&](const Chart_point& u) {
+        const auto x = shape.point(Shape_point(p.component, u));
+        return m_placement ? m_placement(x) : x;
+      });
       p.retained.assign(m.number_of_faces(), false);
       for(auto f : m.faces())
       {
@@ -150,6 +163,7 @@ public:
 
 private:
   int m_resolution;
+  Placement m_placement; // empty: the shape's own frame
   std::vector<Piece> m_pieces;
 };
 

@@ -60,10 +60,12 @@ struct Evolution_event
 /// what you need. The hooks of Default_fitting_visitor are called by every fit to rest.
 struct Default_evolution_visitor : Default_fitting_visitor
 {
-  /// A split was kept; the model is the split one, at rest.
-  void on_split(const Evolution_event& /*event*/) {}
-  /// A split did not pay for its parameters and was undone.
-  void on_undo(const Evolution_event& /*event*/) {}
+  /// A split was kept; `model` (a Deformable_blended_model) is the split one, at rest.
+  template <class Model>
+  void on_split(const Evolution_event& /*event*/, const Model& /*model*/) {}
+  /// A split did not pay for its parameters and was undone; `model` is the one restored.
+  template <class Model>
+  void on_undo(const Evolution_event& /*event*/, const Model& /*model*/) {}
 };
 
 /// \ingroup PkgBlendedShapeEvolution
@@ -81,24 +83,26 @@ namespace internal {
 
 // The evolution hooks of a visitor, called if it has them: any fitting
 // visitor (Default_fitting_visitor) can watch an evolution.
-template <class Visitor, class = void>
+template <class Visitor, class Model, class = void>
 struct Has_evolution_hooks : std::false_type
 {};
-template <class Visitor>
-struct Has_evolution_hooks<Visitor, std::void_t<decltype(std::declval<Visitor&>().on_split(std::declval<const Evolution_event&>())),
-                                                decltype(std::declval<Visitor&>().on_undo(std::declval<const Evolution_event&>()))>>
+template <class Visitor, class Model>
+struct Has_evolution_hooks<
+  Visitor, Model,
+  std::void_t<decltype(std::declval<Visitor&>().on_split(std::declval<const Evolution_event&>(), std::declval<const Model&>())),
+              decltype(std::declval<Visitor&>().on_undo(std::declval<const Evolution_event&>(), std::declval<const Model&>()))>>
   : std::true_type
 {};
 
-template <class Visitor>
-void notify_event(Visitor& visitor, const Evolution_event& e)
+template <class Visitor, class Model>
+void notify_event(Visitor& visitor, const Evolution_event& e, const Model& model)
 {
-  if constexpr(Has_evolution_hooks<Visitor>::value)
+  if constexpr(Has_evolution_hooks<Visitor, Model>::value)
   {
     if(e.accepted())
-      visitor.on_split(e);
+      visitor.on_split(e, model);
     else
-      visitor.on_undo(e);
+      visitor.on_undo(e, model);
   }
 }
 
@@ -182,6 +186,7 @@ public:
         m_kept.push_back(Point_3(all[i].x(), all[i].y(), all[i].z()));
     Fitting_settings least_squares = fitting;
     least_squares.robust_weighting = Robust_weighting::None;
+    least_squares.subset_size = 0;
     m_fitter = std::make_unique<Fitter>(m_kept, initial, least_squares);
   }
 
@@ -280,6 +285,7 @@ public:
     {
       return false; // a region the shape refuses: nothing changed
     }
+    m_fitter->start_from_foot_points_of(*before);
     const Fitting_status status = fit_to_rest(visitor, callback);
     const double msd_after = mean_squared_distance();
     e.description_length_after = description_length_of(msd_after);
@@ -288,7 +294,7 @@ public:
     {
       e.kind = Evolution_event_kind::Split;
       m_events.push_back(e);
-      internal::notify_event(visitor, m_events.back());
+      internal::notify_event(visitor, m_events.back(), m_fitter->model());
       return true;
     }
     // Exactly as before: the model (parameters and structure) and its fitter
@@ -297,7 +303,7 @@ public:
     m_rest_converged = converged_before;
     e.kind = Evolution_event_kind::Undo;
     m_events.push_back(e);
-    internal::notify_event(visitor, m_events.back());
+    internal::notify_event(visitor, m_events.back(), m_fitter->model());
     return false;
   }
 

@@ -21,6 +21,50 @@
 namespace CGAL {
 namespace Blended_shapes {
 
+namespace internal {
+
+// An event of evolution on normalized points (Point_normalization), in the
+// unit of the input: distances times the scale, and the description length
+// of the `n` points, (n/2) ln(MSD), shifted by n ln(scale).
+inline Evolution_event event_in_input_unit(Evolution_event e, double scale, double n)
+{
+  e.rms_before *= scale;
+  e.rms_after *= scale;
+  e.description_length_before += n * std::log(scale);
+  e.description_length_after += n * std::log(scale);
+  return e;
+}
+
+// Passes the hooks of an evolution on normalized points to `visitor` with
+// the events and models in the frame of the input.
+template <class Visitor, class GeomTraits>
+struct Input_frame_visitor
+{
+  Visitor& visitor;
+  const Point_normalization<GeomTraits>& normalization;
+  double number_of_points;
+
+  void on_phase(Fitting_phase phase, std::size_t iteration) { visitor.on_phase(phase, iteration); }
+  void on_iteration(std::size_t iteration, double energy, std::size_t points_used)
+  {
+    visitor.on_iteration(iteration, energy, points_used);
+  }
+  template <class Model>
+  void on_split(const Evolution_event& e, const Model& model) { notify(e, model); }
+  template <class Model>
+  void on_undo(const Evolution_event& e, const Model& model) { notify(e, model); }
+
+private:
+  template <class Model>
+  void notify(const Evolution_event& e, const Model& model)
+  {
+    notify_event(visitor, event_in_input_unit(e, normalization.scale(), number_of_points),
+                 normalization.model_from_normalized(model));
+  }
+};
+
+} // namespace internal
+
 /// \ingroup PkgBlendedShapeEvolution
 /// What fit_blended_shape() returns: the evolved model and the record of its evolution.
 template <class GeomTraits>
@@ -33,22 +77,52 @@ struct Blended_fit_result
   /// points in that unit (see Part_evolution).
   std::vector<Evolution_event> events;
   Evolution_status status;              ///< how evolution ended (its iterations do not count the first fit's)
-  /// The indices (in the input order, increasing) of the points judged
-  /// isolated, which evolution does not fit (Part_evolution::isolated_points()).
-  std::vector<std::size_t> isolated_points;
-  double rms = 0.;                      ///< RMS distance of the points fitted to the model (Part_evolution::mean_squared_distance())
-  double rms_over_bbox_diagonal = 0.;   ///< the same over the diagonal of their bounding box
-  Fit_result<GeomTraits> first_fit;     ///< the one superquadric evolution started from (fit_superquadric())
-  double seconds = 0.;                  ///< wall-clock time of the whole fit
+  /// The fit figures of the model (compute_fit_metrics(), in the unit of
+  /// the input; relative RMS in the frame of the first fit's initial
+  /// ellipsoid, as in eq. 14): those of the fit of one superquadric the
+  /// model is (see fit_blended_shape()), or after a kept split, those of
+  /// evolution's least-squares fit of the points not isolated.
+  /// `iterations` and `seconds` count the whole call.
+  Fit_metrics metrics;
+  /// The indices (in the input order, increasing) of the points the model
+  /// leaves out: with one part, the stray points of its fit
+  /// (Fit_result::stray_points, none for a least-squares fit); after a kept
+  /// split, the points evolution judged isolated (Part_evolution::isolated_points()).
+  std::vector<std::size_t> stray_points;
+  /// The fit of one superquadric evolution started from: by least squares
+  /// (`robust_weighting` `Robust_weighting::None`), as evolution's fits are;
+  /// with `maximum_number_of_parts` 1, fit_superquadric() as asked for.
+  Fit_result<GeomTraits> first_fit;
+  /// The number of parts of the model (its components).
+  std::size_t number_of_parts() const { return model.shape().number_of_components(); }
+  /// The number of splits kept.
+  std::size_t number_of_splits() const
+  {
+    std::size_t n = 0;
+    for(const Evolution_event& e : events)
+      n += e.accepted() ? 1 : 0;
+    return n;
+  }
 };
 
 /*!
 \ingroup PkgBlendedShapeEvolution
 
 Fits a blended shape to `points` in one call: one superquadric first
-(fit_superquadric(), robust by default), then part evolution
+(fit_superquadric() by least squares), then part evolution
 (Part_evolution::run(): splits where the forces at rest say the model
 cannot fit the data, each kept only if it pays for its parameters).
+
+Evolution's fits are least-squares fits of the points that are not
+isolated (see Part_evolution), so it starts from the least-squares fit: a
+robust fit of an object made of parts fits its largest part and takes the
+others for strays. When evolution keeps no split, the model is that of
+fit_superquadric() with the named parameters as given (robust to stray
+points by default), bit for bit, unless that fit judged more than half of
+the points stray: a fit that explains a minority of the points fits one
+part of an object made of several (the box/cylinder scan: 70 % "strays"),
+and the least-squares fit stays. With `maximum_number_of_parts` 1,
+evolution is skipped and the model is always fit_superquadric()'s.
 
 Like fit_superquadric(), evolution works on a copy of the points centred at
 the origin at about unit size, and the model is mapped back exactly: the
@@ -57,15 +131,15 @@ result does not depend on the unit of the points or on where they are.
 \param points the input points (see check_points())
 \param np optional named parameters:
   - every member of Fitting_settings (settings_from_named_parameters()),
-    for the first fit and for evolution's fits (which are least-squares
-    fits of the points that are not isolated, see Part_evolution);
+    for the first fit and for evolution's fits;
   - every member of Evolution_settings (evolution_settings_from_named_parameters()):
     `maximum_number_of_parts` (1: one superquadric), `target_accuracy`,
     `maximum_split_tries`, `threshold_factor`, `analysis_resolution`;
   - `point_map`, `geom_traits`, `try_all_axes`, `reference_mesh`: as for fit_superquadric();
   - `visitor`: a fitting visitor (Default_fitting_visitor), whose
     `on_split()` and `on_undo()` are called too if it has them
-    (Default_evolution_visitor);
+    (Default_evolution_visitor), with the event and the model in the frame
+    and unit of the input, as in the result;
   - `callback`: as for fit_superquadric(), passed to every fit; when it
     stops evolution, the model is the last one kept.
 
@@ -88,40 +162,65 @@ auto fit_blended_shape(const PointRange& points, const NamedParameters& np = CGA
   auto visitor = CGAL::parameters::choose_parameter(CGAL::parameters::get_parameter(np, CGAL::internal_np::visitor),
                                                     Default_evolution_visitor());
 
-  auto first = fit_superquadric(points, np);
-  const internal::Point_normalization<Geom_traits> normalization(points, point_map);
-  const auto first_normalized = normalization.model_to_normalized(first.model);
-  Part_evolution<Geom_traits> evolution(
-    normalization.normalized_points(points, point_map),
-    Model(Blended_shape<Geom_traits>(first_normalized.shape()), first_normalized.translation(),
-          first_normalized.quaternion()),
-    settings_from_named_parameters(np), evolution_settings);
-  Result result{normalization.model_from_normalized(evolution.model()), {}, {}, {}, 0., 0., std::move(first), 0.};
-  if(result.first_fit.metrics.aborted)
-    result.status.aborted = true; // the model is the first fit's, as far as it went
-  else
+  // Evolution fits by least squares (see Part_evolution), so it starts from
+  // the least-squares fit of one superquadric: a robust fit of an object made
+  // of parts fits the largest part and takes the others for strays (on the
+  // box/cylinder scan, 70 % of the points), a start that no split repairs.
+  const bool evolve = evolution_settings.maximum_number_of_parts > 1;
+  const bool robust = settings_from_named_parameters(np).robust_weighting != Robust_weighting::None;
+  Fit_result<Geom_traits> first_fit = evolve ? fit_superquadric(points, parameters::robust_weighting(Robust_weighting::None, np))
+                                             : fit_superquadric(points, np);
+  const auto as_blended = [](const typename Fit_result<Geom_traits>::Model& m) {
+    return Model(Blended_shape<Geom_traits>(m.shape()), m.translation(), m.quaternion());
+  };
+  Result result{as_blended(first_fit.model), {}, {}, first_fit.metrics, first_fit.stray_points, std::move(first_fit)};
+  const Fit_result<Geom_traits>& first = result.first_fit;
+  result.status.converged = first.metrics.converged;
+  result.status.aborted = first.metrics.aborted; // the model is then the first fit's, as far as it went
+  result.status.part_limit_reached = !evolve;
+  std::size_t iterations = first.metrics.iterations;
+  if(evolve && !result.status.aborted)
   {
-    result.status = evolution.run(visitor, callback);
-    result.model = normalization.model_from_normalized(evolution.model());
+    const internal::Point_normalization<Geom_traits> normalization(points, point_map);
+    Part_evolution<Geom_traits> evolution(normalization.normalized_points(points, point_map),
+                                          as_blended(normalization.model_to_normalized(first.model)),
+                                          settings_from_named_parameters(np), evolution_settings);
+    const double n = double(evolution.fitter().number_of_points());
+    result.status = evolution.run(internal::Input_frame_visitor<decltype(visitor), Geom_traits>{visitor, normalization, n},
+                                  callback);
+    iterations += result.status.iterations;
+    for(const Evolution_event& e : evolution.events())
+      result.events.push_back(internal::event_in_input_unit(e, normalization.scale(), n));
+    if(result.number_of_splits() > 0)
+    {
+      result.model = normalization.model_from_normalized(evolution.model());
+      Fitting_status rest;
+      rest.converged = result.status.converged;
+      rest.aborted = result.status.aborted;
+      result.metrics = normalization.from_normalized(compute_fit_metrics(
+        evolution.fitter(), normalization.to_normalized(first.initial_ellipsoid), rest));
+      result.stray_points = evolution.isolated_points();
+    }
+    else if(robust && !result.status.aborted)
+    {
+      // One part after all: the fit of one superquadric as asked for
+      // (robust), unless it takes most points for strays: then it fits one
+      // part of an object made of several, and the least-squares fit,
+      // which fits them all, stays.
+      const Fit_result<Geom_traits> single = fit_superquadric(points, np);
+      iterations += single.metrics.iterations;
+      result.status.aborted = single.metrics.aborted;
+      if(2 * single.stray_points.size() <= single.metrics.number_of_points)
+      {
+        result.model = as_blended(single.model);
+        result.metrics = single.metrics;
+        result.stray_points = single.stray_points;
+      }
+    }
   }
-  // Lengths back in the input's unit: distances times the scale, and the
-  // description length of the points (n/2) ln(MSD) shifted by n ln(scale).
-  const double scale = normalization.scale();
-  const double n = double(evolution.fitter().number_of_points());
-  result.events = evolution.events();
-  for(Evolution_event& e : result.events)
-  {
-    e.rms_before *= scale;
-    e.rms_after *= scale;
-    e.description_length_before += n * std::log(scale);
-    e.description_length_after += n * std::log(scale);
-  }
-  result.isolated_points = evolution.isolated_points();
-  const double rms = std::sqrt(evolution.mean_squared_distance());
-  result.rms = rms * scale;
-  const double diagonal = evolution.fitter().bounding_box_diagonal();
-  result.rms_over_bbox_diagonal = diagonal > 0. ? rms / diagonal : 0.;
-  result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  result.metrics.iterations = iterations;
+  result.metrics.aborted = result.status.aborted;
+  result.metrics.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return result;
 }
 

@@ -72,6 +72,9 @@ public:
   const Eigen::Vector4d& quaternion() const { return m_pose.quaternion; }
   /// The rotation matrix `R`.
   const Eigen::Matrix3d& rotation() const { return m_pose.R; }
+  /// The point `c + R s` that a point `s` of the shape's own frame is placed at
+  /// (e.g. to place the shape's meshes: `Blended_shape_pieces::Placement`).
+  Point_3 placed(const Point_3& s) const { return place(to_eigen(s)); }
 
   /// \name Parameters
   /// @{

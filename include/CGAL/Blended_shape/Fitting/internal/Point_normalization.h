@@ -105,12 +105,13 @@ public:
   Ellipsoid_fit<GeomTraits> from_normalized(Ellipsoid_fit<GeomTraits> fit) const
   {
     fit.center = from_normalized(fit.center);
-    for(std::size_t i = 0; i < 3; ++i)
-    {
-      fit.axes[i] *= m_scale;
-      fit.moment_axes[i] *= m_scale;
-    }
-    return fit;
+    return scaled_axes(fit, m_scale);
+  }
+
+  Ellipsoid_fit<GeomTraits> to_normalized(Ellipsoid_fit<GeomTraits> fit) const
+  {
+    fit.center = to_normalized(fit.center);
+    return scaled_axes(fit, 1. / m_scale);
   }
 
   // The figures of a fit of the normalized points, for the input: the
@@ -152,6 +153,16 @@ private:
     Model result = model;
     result.set_parameters(q);
     return result;
+  }
+
+  static Ellipsoid_fit<GeomTraits> scaled_axes(Ellipsoid_fit<GeomTraits> fit, double scale)
+  {
+    for(std::size_t i = 0; i < 3; ++i)
+    {
+      fit.axes[i] *= scale;
+      fit.moment_axes[i] *= scale;
+    }
+    return fit;
   }
 
   static Eigen::Vector3d coordinates(const Point_3& p)
