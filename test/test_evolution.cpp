@@ -516,6 +516,33 @@ void test_split_model_fits_to_rest()
   least_squares.robust_weighting = BS::Robust_weighting::None;
   BS::Deformable_model_fitter<Model> on(points, BS::apply_split(robust.model(), *proposal), least_squares);
   const double before = on.mean_squared_distance(true);
+
+  // Started from the foot points of the fitter before the split, the split
+  // model's fitter finds them again (the split moves no point): the mean
+  // squared distance stays that before the split, where a search from the
+  // tessellation alone finds a larger one. Another cloud's fitter is refused.
+  {
+    BS::Deformable_model_fitter<Model> inheriting(points, BS::apply_split(robust.model(), *proposal), least_squares);
+    inheriting.start_from_foot_points_of(robust);
+    const double unsplit = robust.mean_squared_distance(true), inherited = inheriting.mean_squared_distance(true);
+    BS_CHECK(inherited <= unsplit * (1. + 1e-9) && inherited <= before,
+             "a split model's fitter from the foot points before the split: mean squared distance " << inherited
+               << ", before the split " << unsplit << ", from the tessellation " << before);
+    std::cout << "  mean squared distance after a split: " << inherited << " from the foot points before it ("
+              << unsplit << " before it), " << before << " from the tessellation" << std::endl;
+    const std::vector<typename K::Point_3> fewer(points.begin(), points.begin() + 100);
+    const BS::Deformable_model_fitter<Model> other(fewer, robust.model());
+    bool refused = false;
+    try
+    {
+      inheriting.start_from_foot_points_of(other);
+    }
+    catch(const std::invalid_argument& e)
+    {
+      refused = std::string(e.what()).find("start_from_foot_points_of: the fitters have other points") != std::string::npos;
+    }
+    BS_CHECK(refused, "the foot points of a fitter of other points were not refused");
+  }
   BS::Fitting_status status;
   std::string error;
   try
