@@ -241,6 +241,9 @@ void test_good_run(const Temp_dir& dir)
   BS_CHECK(out.find("\"events\": [") != std::string::npos && count_of(out, "\"kind\": \"split\"") == 0,
            "the evolution events: " << out);
   BS_CHECK(count_of(err, "blended_fit: event ") == events, "progress does not name the " << events << " events");
+  BS_CHECK(err.find("part evolution: force analysis") != std::string::npos &&
+             count_of(err, "part evolution: fit of a split model") == events,
+           "progress does not name the evolution phases");
   // The trace: the first fit, then the model after each event, as PLY and DOT.
   BS_CHECK(exists(dir / "trace/00_first_fit.ply") && exists(dir / "trace/00_first_fit.dot"), "trace of the first fit");
   for(std::size_t e = 1; e <= events; ++e)

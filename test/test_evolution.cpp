@@ -346,6 +346,8 @@ struct Counting_visitor : BS::Default_evolution_visitor
 {
   std::size_t splits = 0, undos = 0;
   std::size_t parts = 0; // of the model the last hook saw
+  std::size_t phases[3] = {0, 0, 0}; // per Evolution_phase
+  void on_evolution_phase(BS::Evolution_phase p, std::size_t) { ++phases[std::size_t(p)]; }
   template <class Model>
   void on_split(const BS::Evolution_event& e, const Model& m)
   {
@@ -413,6 +415,11 @@ void test_no_over_splitting()
                "an event kept (" << e.accepted() << ") against its description lengths "
                                  << e.description_length_before << " -> " << e.description_length_after);
     }
+    // run(): one fit to rest and one force analysis (no split kept); a split fit per event.
+    BS_CHECK(visitor.phases[0] == 1 && visitor.phases[1] == 1 && visitor.phases[2] == evolution.events().size(),
+             "evolution phases heard: " << visitor.phases[0] << " fits to rest, " << visitor.phases[1]
+                                        << " analyses, " << visitor.phases[2] << " split fits for "
+                                        << evolution.events().size() << " events");
     BS_CHECK(visitor.splits == 0 && visitor.undos == undone && (undone == 0 || visitor.parts == 1),
              "the visitor heard of " << visitor.splits << " splits and " << visitor.undos << " undos, not 0 and "
                                      << undone << ", the last of a model of " << visitor.parts << " parts");

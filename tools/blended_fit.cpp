@@ -190,6 +190,12 @@ struct Reporter : BS::Default_evolution_visitor
       std::cerr << "blended_fit: iteration " << it << "  energy " << energy << "  points " << n << "  parts " << parts
                 << "  holes 0\n";
   }
+  void on_evolution_phase(BS::Evolution_phase p, std::size_t n) const
+  {
+    if(!quiet)
+      std::cerr << "blended_fit: part evolution: " << BS::evolution_phase_name(p) << " (" << n
+                << (n == 1 ? " part" : " parts") << ")\n";
+  }
   template <class M>
   void on_split(const BS::Evolution_event& e, const M& model) { event(e, model); }
   template <class M>

@@ -56,10 +56,33 @@ struct Evolution_event
 };
 
 /// \ingroup PkgBlendedShapeEvolution
+/// The phases of Part_evolution::run(), as Default_evolution_visitor::on_evolution_phase() hears of them.
+enum class Evolution_phase
+{
+  Fit_to_rest,    ///< the current model is fitted to rest (Part_evolution::fit_to_rest())
+  Force_analysis, ///< the forces at rest are analysed and splits proposed (Part_evolution::propose_splits())
+  Split_fit       ///< a split model is fitted to rest, to be kept or undone (Part_evolution::try_split())
+};
+
+/// \ingroup PkgBlendedShapeEvolution
+/// The name of a phase, for progress output: "fit to rest", "force analysis", "fit of a split model".
+inline const char* evolution_phase_name(Evolution_phase p)
+{
+  switch(p)
+  {
+  case Evolution_phase::Fit_to_rest: return "fit to rest";
+  case Evolution_phase::Force_analysis: return "force analysis";
+  default: return "fit of a split model";
+  }
+}
+
+/// \ingroup PkgBlendedShapeEvolution
 /// A visitor of part evolution with empty hooks: derive from it and override
 /// what you need. The hooks of Default_fitting_visitor are called by every fit to rest.
 struct Default_evolution_visitor : Default_fitting_visitor
 {
+  /// Evolution enters `phase`; `parts` is the number of components of the current model.
+  void on_evolution_phase(Evolution_phase /*phase*/, std::size_t /*parts*/) {}
   /// A split was kept; `model` (a Deformable_blended_model) is the split one, at rest.
   template <class Model>
   void on_split(const Evolution_event& /*event*/, const Model& /*model*/) {}
@@ -104,6 +127,21 @@ void notify_event(Visitor& visitor, const Evolution_event& e, const Model& model
     else
       visitor.on_undo(e, model);
   }
+}
+
+template <class Visitor, class = void>
+struct Has_evolution_phase_hook : std::false_type
+{};
+template <class Visitor>
+struct Has_evolution_phase_hook<Visitor, std::void_t<decltype(std::declval<Visitor&>().on_evolution_phase(
+                                           Evolution_phase::Fit_to_rest, std::size_t(0)))>> : std::true_type
+{};
+
+template <class Visitor>
+void notify_phase(Visitor& visitor, Evolution_phase phase, std::size_t parts)
+{
+  if constexpr(Has_evolution_phase_hook<Visitor>::value)
+    visitor.on_evolution_phase(phase, parts);
 }
 
 } // namespace internal
@@ -286,6 +324,7 @@ public:
       return false; // a region the shape refuses: nothing changed
     }
     m_fitter->start_from_foot_points_of(*before);
+    internal::notify_phase(visitor, Evolution_phase::Split_fit, m_fitter->model().shape().number_of_components());
     const Fitting_status status = fit_to_rest(visitor, callback);
     const double msd_after = mean_squared_distance();
     e.description_length_after = description_length_of(msd_after);
@@ -315,6 +354,7 @@ public:
   {
     Evolution_status status;
     const std::size_t start = m_iterations;
+    internal::notify_phase(visitor, Evolution_phase::Fit_to_rest, model().shape().number_of_components());
     fit_to_rest(visitor, callback);
     while(!m_last_fit.aborted)
     {
@@ -330,6 +370,7 @@ public:
         break;
       }
       bool kept = false;
+      internal::notify_phase(visitor, Evolution_phase::Force_analysis, model().shape().number_of_components());
       for(const Split_proposal& p : propose_splits())
         if((kept = try_split(p, visitor, callback)) || m_last_fit.aborted)
           break;

@@ -49,6 +49,7 @@ struct Input_frame_visitor
   {
     visitor.on_iteration(iteration, energy, points_used);
   }
+  void on_evolution_phase(Evolution_phase phase, std::size_t parts) { notify_phase(visitor, phase, parts); }
   template <class Model>
   void on_split(const Evolution_event& e, const Model& model) { notify(e, model); }
   template <class Model>
