@@ -368,10 +368,7 @@ BS::Part_evolution<K> evolution_of(const std::vector<typename K::Point_3>& point
                                    const BS::Evolution_settings& settings = BS::Evolution_settings())
 {
   const auto first = BS::fit_superquadric(points);
-  return BS::Part_evolution<K>(points,
-                               BS::Deformable_blended_model<K>(BS::Blended_shape<K>(first.model.shape()),
-                                                               first.model.translation(), first.model.quaternion()),
-                               BS::Fitting_settings(), settings);
+  return BS::Part_evolution<K>(points, BS::make_blended_model(first.model), BS::Fitting_settings(), settings);
 }
 
 // Seeded scans of single superquadrics (full and single view, noise 0.2 %
@@ -508,8 +505,7 @@ void test_split_model_fits_to_rest()
   std::mt19937_64 rng(1);
   const auto points = BS::testing::scan_of_union<typename K::Point_3>(body, part, 4000, 0.006, rng);
   const auto first = BS::fit_superquadric(points);
-  BS::Deformable_model_fitter<Model> robust(
-    points, Model(BS::Blended_shape<K>(first.model.shape()), first.model.translation(), first.model.quaternion()));
+  BS::Deformable_model_fitter<Model> robust(points, BS::make_blended_model(first.model));
   robust.run();
   const BS::Blended_shape_pieces<K> pieces(robust.model().shape(), resolution);
   const BS::Quotient_domain<K> domain(robust.model().shape(), pieces, 1);
@@ -600,8 +596,7 @@ void test_fit_blended_shape()
   // No split kept: fit_superquadric() (robust), bit for bit, with its
   // figures and strays; evolution started from the least-squares fit.
   const auto single = BS::fit_superquadric(points, BSP::number_of_threads(1));
-  const typename BS::Blended_fit_result<K>::Model robust(BS::Blended_shape<K>(single.model.shape()),
-                                                         single.model.translation(), single.model.quaternion());
+  const auto robust = BS::make_blended_model(single.model);
   BS_CHECK(BS::testing::same_bits(a.model.parameters(), robust.parameters()) &&
              a.metrics.rms == single.metrics.rms && a.stray_points == single.stray_points &&
              a.metrics.iterations == a.first_fit.metrics.iterations + a.status.iterations + single.metrics.iterations,

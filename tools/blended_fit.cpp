@@ -309,9 +309,7 @@ int main(int argc, char** argv)
         .visitor(reporter));
     if(!trace.empty())
     {
-      write_trace(trace, 0, "first_fit", Model(BS::Blended_shape<K>(result.first_fit.model.shape()),
-                                               result.first_fit.model.translation(),
-                                               result.first_fit.model.quaternion()));
+      write_trace(trace, 0, "first_fit", BS::make_blended_model(result.first_fit.model));
       write_trace(trace, result.events.size() + 1, "final", result.model);
     }
     if(!quiet)

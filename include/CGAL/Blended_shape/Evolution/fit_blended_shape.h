@@ -171,10 +171,7 @@ auto fit_blended_shape(const PointRange& points, const NamedParameters& np = CGA
   const bool robust = settings_from_named_parameters(np).robust_weighting != Robust_weighting::None;
   Fit_result<Geom_traits> first_fit = evolve ? fit_superquadric(points, parameters::robust_weighting(Robust_weighting::None, np))
                                              : fit_superquadric(points, np);
-  const auto as_blended = [](const typename Fit_result<Geom_traits>::Model& m) {
-    return Model(Blended_shape<Geom_traits>(m.shape()), m.translation(), m.quaternion());
-  };
-  Result result{as_blended(first_fit.model), {}, {}, first_fit.metrics, first_fit.stray_points, std::move(first_fit)};
+  Result result{make_blended_model(first_fit.model), {}, {}, first_fit.metrics, first_fit.stray_points, std::move(first_fit)};
   const Fit_result<Geom_traits>& first = result.first_fit;
   result.status.converged = first.metrics.converged;
   result.status.aborted = first.metrics.aborted; // the model is then the first fit's, as far as it went
@@ -184,7 +181,7 @@ auto fit_blended_shape(const PointRange& points, const NamedParameters& np = CGA
   {
     const internal::Point_normalization<Geom_traits> normalization(points, point_map);
     Part_evolution<Geom_traits> evolution(normalization.normalized_points(points, point_map),
-                                          as_blended(normalization.model_to_normalized(first.model)),
+                                          make_blended_model(normalization.model_to_normalized(first.model)),
                                           settings_from_named_parameters(np), evolution_settings);
     const double n = double(evolution.fitter().number_of_points());
     result.status = evolution.run(internal::Input_frame_visitor<decltype(visitor), Geom_traits>{visitor, normalization, n},
@@ -213,7 +210,7 @@ auto fit_blended_shape(const PointRange& points, const NamedParameters& np = CGA
       result.status.aborted = single.metrics.aborted;
       if(2 * single.stray_points.size() <= single.metrics.number_of_points)
       {
-        result.model = as_blended(single.model);
+        result.model = make_blended_model(single.model);
         result.metrics = single.metrics;
         result.stray_points = single.stray_points;
       }

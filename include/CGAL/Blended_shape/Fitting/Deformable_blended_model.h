@@ -5,7 +5,9 @@
 #include <CGAL/Blended_shape/Blending/Blended_shape.h>
 #include <CGAL/Blended_shape/Primitives/Chart_domain.h>
 #include <CGAL/Blended_shape/internal/Parameter_table.h>
+#include <CGAL/Blended_shape/Fitting/Deformable_model.h>
 #include <CGAL/Blended_shape/Fitting/internal/Rigid_pose.h>
+#include <CGAL/Blended_shape/Primitives/Superquadric_ellipsoid.h>
 
 #include <Eigen/Core>
 
@@ -277,6 +279,18 @@ private:
   std::vector<std::size_t> m_first_chart;     // per component: its first model chart
   std::vector<std::size_t> m_chart_component; // per model chart: its component
 };
+
+/// \ingroup PkgBlendedShapeFitting
+/// The blended model of one component that a fitted superquadric is: the
+/// same surface, pose and parameters (e.g. fit_superquadric()'s model,
+/// which part evolution starts from).
+template <class GeomTraits>
+Deformable_blended_model<GeomTraits>
+make_blended_model(const Deformable_model<Superquadric_ellipsoid<GeomTraits>>& superquadric)
+{
+  return Deformable_blended_model<GeomTraits>(Blended_shape<GeomTraits>(superquadric.shape()),
+                                              superquadric.translation(), superquadric.quaternion());
+}
 
 } // namespace Blended_shapes
 } // namespace CGAL
