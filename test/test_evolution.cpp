@@ -344,7 +344,7 @@ void test_bad_input()
 // Counts the evolution events it hears of.
 struct Counting_visitor : BS::Default_evolution_visitor
 {
-  std::size_t splits = 0, undos = 0;
+  std::size_t splits = 0, undos = 0, removes = 0;
   std::size_t parts = 0; // of the model the last hook saw
   std::size_t phases[3] = {0, 0, 0}; // per Evolution_phase
   void on_evolution_phase(BS::Evolution_phase p, std::size_t) { ++phases[std::size_t(p)]; }
@@ -357,7 +357,13 @@ struct Counting_visitor : BS::Default_evolution_visitor
   template <class Model>
   void on_undo(const BS::Evolution_event& e, const Model& m)
   {
-    undos += e.accepted() ? 1000 : 1;
+    undos += e.kind == BS::Evolution_event_kind::Undo ? 1 : 1000;
+    parts = m.shape().number_of_components();
+  }
+  template <class Model>
+  void on_remove(const BS::Evolution_event& e, const Model& m)
+  {
+    removes += e.kind == BS::Evolution_event_kind::Remove ? 1 : 1000;
     parts = m.shape().number_of_components();
   }
 };
@@ -426,6 +432,79 @@ void test_no_over_splitting()
   }
   // Without a tried split, the restore above is not tested.
   BS_CHECK(tried > 0, "no split was proposed on the noisy single superquadrics");
+}
+
+// Parts that no longer pay for their parameters go. On a noisy scan of one
+// superquadric, its fit split (the copy at h = 0) and fitted to rest has
+// its part merged back into the base: one Remove event whose description
+// length does not rise, the visitor's on_remove() with the one-part model.
+// merge_split() undoes split() bit for bit and refuses the root and a part
+// that others are built on.
+template <class K>
+void test_remove_unpaid_parts()
+{
+  std::mt19937_64 rng(2);
+  const auto truth = BS::testing::random_superellipsoid<K>(rng);
+  const auto points = BS::testing::synthetic_scan(truth, 1500, false, 0.002, rng);
+  BS::Part_evolution<K> one = evolution_of<K>(points);
+  one.fit_to_rest();
+  const std::vector<BS::Split_proposal> proposals = one.propose_splits();
+  BS_CHECK(!proposals.empty(), "no split proposed on the noisy superquadric");
+  if(proposals.empty())
+    return;
+  const BS::Deformable_blended_model<K> split = BS::apply_split(one.model(), proposals.front());
+
+  BS::Blended_shape<K> merged = split.shape();
+  merged.merge_split(1);
+  BS_CHECK(merged.number_of_components() == 1 && merged.number_of_blends() == 0 &&
+             BS::testing::same_bits(merged.parameters(), one.model().shape().parameters()),
+           "merge_split() did not undo split() exactly");
+  auto refused = [&](const char* what, const BS::Blended_shape<K>& shape, std::size_t c, const std::string& expected) {
+    BS::Blended_shape<K> s = shape;
+    try
+    {
+      s.merge_split(c);
+    }
+    catch(const std::logic_error& e)
+    {
+      BS_CHECK(std::string(e.what()).find(expected) != std::string::npos, what << ": message \"" << e.what() << "\"");
+      return;
+    }
+    BS_CHECK(false, what << ": not refused");
+  };
+  refused("merge_split of the root", split.shape(), 0, "the root cannot be removed");
+  refused("merge_split of a component that does not exist", split.shape(), 2, "no component 2");
+  {
+    // the copy split again, inside its region (half the ellipse)
+    BS::Split_proposal inner = proposals.front();
+    inner.region.segment<2>(BS::Ellipse_blending_region::E_1) *= 0.5;
+    BS::Blended_shape<K> nested = split.shape();
+    nested.split(1, inner.chart, inner.region, 0.5 * inner.half_width);
+    refused("merge_split of a part that is split again", nested, 1, "is based on component 1");
+  }
+
+  BS::Part_evolution<K> evolution(points, split);
+  evolution.fit_to_rest();
+  Counting_visitor visitor;
+  const std::size_t removed = evolution.remove_unpaid_parts(visitor);
+  BS_CHECK(removed == 1 && evolution.model().shape().number_of_components() == 1 &&
+             evolution.model().shape().number_of_blends() == 0,
+           removed << " parts removed, " << evolution.model().shape().number_of_components() << " left");
+  BS_CHECK(evolution.events().size() == removed, evolution.events().size() << " events for " << removed << " removed");
+  for(const BS::Evolution_event& e : evolution.events())
+  {
+    BS_CHECK(e.kind == BS::Evolution_event_kind::Remove && e.component == 1 && !e.accepted() &&
+               e.description_length_after <= e.description_length_before,
+             "removal event: kind " << BS::evolution_event_name(e.kind) << ", component " << e.component
+                                    << ", description length " << e.description_length_before << " -> "
+                                    << e.description_length_after);
+    std::cout << "  a split part of one superquadric removed: description length " << e.description_length_before
+              << " -> " << e.description_length_after << ", RMS " << e.rms_before << " -> " << e.rms_after
+              << std::endl;
+  }
+  BS_CHECK(visitor.removes == 1 && visitor.splits == 0 && visitor.undos == 0 && visitor.parts == 1,
+           "the visitor heard of " << visitor.removes << " removals (" << visitor.splits << " splits, "
+                                   << visitor.undos << " undos), the last with " << visitor.parts << " parts");
 }
 
 // The part limit, the abort callback and bad settings.
@@ -560,6 +639,11 @@ void test_split_model_fits_to_rest()
   const double after = on.mean_squared_distance(true);
   BS_CHECK(status.converged && after < before, "the fit of the split model: converged " << status.converged
                                                << ", mean squared distance " << before << " -> " << after);
+  // The part pays for its parameters: it stays.
+  BS::Part_evolution<K> evolution(points, on.model());
+  const std::size_t removed = evolution.remove_unpaid_parts();
+  BS_CHECK(removed == 0 && evolution.model().shape().number_of_components() == 2,
+           "a part that pays for its parameters was removed");
   std::cout << "  split model fitted to rest in " << status.iterations << " iterations, mean squared distance "
             << before << " -> " << after << std::endl;
 }
@@ -661,6 +745,7 @@ void run_part_evolution(const char* kernel)
 {
   const int before = blended_shape_test::failures();
   test_no_over_splitting<K>();
+  test_remove_unpaid_parts<K>();
   test_evolution_limits<K>();
   if(!reduced) // (cases the sanitizers do not add to: they are about geometry, and slow there)
   {

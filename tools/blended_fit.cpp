@@ -45,9 +45,10 @@ const char* usage =
   "  --no-split           one superquadric: no part evolution\n"
   "  --max-parts N        at most N parts (default 8; 1 is --no-split)\n"
   "  --trace DIR          write, as the fit goes, the model after each split tried (kept or\n"
-  "                       undone), then the first fit and the final model, to DIR (created if\n"
-  "                       missing): NN_KIND.ply (pieces coloured by component) and NN_KIND.dot\n"
-  "                       (hierarchy), KIND first_fit, split, undo or final\n"
+  "                       undone) and each part removed, then the first fit and the final\n"
+  "                       model, to DIR (created if missing): NN_KIND.ply (pieces coloured by\n"
+  "                       component) and NN_KIND.dot (hierarchy), KIND first_fit, split, undo,\n"
+  "                       remove or final\n"
   "  --no-holes           do not add holes (this release never does)\n"
   "  --max-iterations N   iteration limit of each fit to rest (default 100)\n"
   "  --seed N             random seed for the point subsets (default 0)\n"
@@ -95,7 +96,7 @@ Json model_json(const Model& model)
 Json event_json(const BS::Evolution_event& e)
 {
   Json j = Json::object();
-  j["kind"] = e.accepted() ? "split" : "undo";
+  j["kind"] = BS::evolution_event_name(e.kind);
   j["iteration"] = double(e.iteration);
   j["component"] = double(e.component);
   j["new_component"] = double(e.new_component);
@@ -200,6 +201,8 @@ struct Reporter : BS::Default_evolution_visitor
   void on_split(const BS::Evolution_event& e, const M& model) { event(e, model); }
   template <class M>
   void on_undo(const BS::Evolution_event& e, const M& model) { event(e, model); }
+  template <class M>
+  void on_remove(const BS::Evolution_event& e, const M& model) { event(e, model); }
 
 private:
   void event(const BS::Evolution_event& e, const Model& model)
@@ -207,12 +210,13 @@ private:
     parts = model.shape().number_of_components();
     ++events;
     if(!quiet)
-      std::cerr << "blended_fit: event " << events << ": split of component " << e.component << " "
-                << (e.accepted() ? "kept" : "undone") << " (RMS " << e.rms_before << " -> " << e.rms_after
+      std::cerr << "blended_fit: event " << events << ": "
+                << (e.kind == BS::Evolution_event_kind::Remove ? "part " : "split of component ") << e.component << " "
+                << (e.accepted() ? "kept" : e.kind == BS::Evolution_event_kind::Undo ? "undone" : "removed") << " (RMS " << e.rms_before << " -> " << e.rms_after
                 << ", description length " << e.description_length_before << " -> " << e.description_length_after
                 << "); " << parts << (parts == 1 ? " part" : " parts") << "\n";
     if(!trace.empty())
-      write_trace(trace, events, e.accepted() ? "split" : "undo", model);
+      write_trace(trace, events, BS::evolution_event_name(e.kind), model);
   }
 };
 

@@ -687,23 +687,51 @@ public:
   /// \throws std::logic_error otherwise
   void remove_component(std::size_t c)
   {
-    check_component(c, "remove_component");
+    const std::vector<std::size_t> gone = blends_adding_leaf(c, "remove_component");
+    for(std::size_t b : gone)
+      if(!m_blends[b].is_gradual() || m_blends[b].base_region().parameters()[Ellipse_blending_region::H] != 1.)
+        throw std::logic_error("Blended_shape::remove_component: component " + std::to_string(c) +
+                               " still contributes (its blend " + std::to_string(b) + " has h < 1 or is final)");
+    erase_component(c, gone);
+  }
+
+  /// Undoes the split that added component `c` (split()): `c` and its blend
+  /// go, and its base covers the blending region with its own surface again.
+  /// Unlike remove_component(), this moves the points of the region (from the
+  /// blend of the two components to the base's surface): for a part that no
+  /// longer pays for itself (Part_evolution). No blend may be based on `c`.
+  /// Later indices shift down.
+  /// \throws std::logic_error if `c` is not added by a split, or a blend is based on it
+  void merge_split(std::size_t c)
+  {
+    const std::vector<std::size_t> gone = blends_adding_leaf(c, "merge_split");
+    if(gone.size() != 1 || m_blends[gone.front()].kind() != Blend_kind::Split)
+      throw std::logic_error("Blended_shape::merge_split: component " + std::to_string(c) + " is not added by a split");
+    erase_component(c, gone);
+  }
+
+private:
+  // The blends that add component c > 0, which no blend may be based on.
+  std::vector<std::size_t> blends_adding_leaf(std::size_t c, const char* who) const
+  {
+    check_component(c, who);
     if(c == 0)
-      throw std::logic_error("Blended_shape::remove_component: the root cannot be removed");
+      throw std::logic_error(std::string("Blended_shape::") + who + ": the root cannot be removed");
     std::vector<std::size_t> gone;
     for(std::size_t b = 0; b < m_blends.size(); ++b)
     {
-      const Blend& B = m_blends[b];
-      if(B.base_component() == c)
-        throw std::logic_error("Blended_shape::remove_component: blend " + std::to_string(b) + " is based on component " +
-                               std::to_string(c));
-      if(B.added_component() != c)
-        continue;
-      if(!B.is_gradual() || B.base_region().parameters()[Ellipse_blending_region::H] != 1.)
-        throw std::logic_error("Blended_shape::remove_component: component " + std::to_string(c) +
-                               " still contributes (its blend " + std::to_string(b) + " has h < 1 or is final)");
-      gone.push_back(b);
+      if(m_blends[b].base_component() == c)
+        throw std::logic_error(std::string("Blended_shape::") + who + ": blend " + std::to_string(b) +
+                               " is based on component " + std::to_string(c));
+      if(m_blends[b].added_component() == c)
+        gone.push_back(b);
     }
+    return gone;
+  }
+
+  // Erases component c and its blends `gone` (increasing), renumbering the rest.
+  void erase_component(std::size_t c, const std::vector<std::size_t>& gone)
+  {
     Blended_shape copy(*this);
     for(std::size_t k = gone.size(); k-- > 0;)
       copy.m_blends.erase(copy.m_blends.begin() + std::ptrdiff_t(gone[k]));
@@ -738,6 +766,8 @@ public:
     copy.update_layout();
     *this = std::move(copy);
   }
+
+public:
   /// @}
 
   /// \cond INTERNAL

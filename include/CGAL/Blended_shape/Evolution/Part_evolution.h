@@ -35,25 +35,39 @@ namespace Blended_shapes {
 enum class Evolution_event_kind
 {
   Split, ///< a split that paid for its parameters: kept
-  Undo   ///< a split that did not: the model was restored exactly
+  Undo,  ///< a split that did not: the model was restored exactly
+  Remove ///< a part that no longer paid for its parameters: merged back into its base (Blended_shape::merge_split())
 };
 
 /// \ingroup PkgBlendedShapeEvolution
-/// One structural change tried by Part_evolution.
+/// One structural change tried by Part_evolution: a split kept or undone,
+/// or a part removed.
 struct Evolution_event
 {
-  Evolution_event_kind kind = Evolution_event_kind::Split; ///< kept or undone
-  std::size_t iteration = 0;  ///< fitting iterations done before the split
-  std::size_t component = 0;  ///< the component split
-  std::size_t new_component = 0; ///< the component the split added (gone again after an undo)
-  std::size_t boundary = 0;   ///< the boundary curve of the force analysis it came from
-  Split_proposal proposal;    ///< where
-  double description_length_before = 0.; ///< of the model at rest before the split (see Part_evolution)
-  double description_length_after = 0.;  ///< of the split model at rest
-  double rms_before = 0.;     ///< RMS distance of the points to the model before the split
-  double rms_after = 0.;      ///< the same after fitting the split model to rest
-  bool accepted() const { return kind == Evolution_event_kind::Split; } ///< whether the split was kept
+  Evolution_event_kind kind = Evolution_event_kind::Split; ///< kept, undone or removed
+  std::size_t iteration = 0;  ///< fitting iterations done before the event
+  std::size_t component = 0;  ///< the component split (Remove: the component removed)
+  std::size_t new_component = 0; ///< the component the split added (gone again after an undo; Remove: 0)
+  std::size_t boundary = 0;   ///< the boundary curve of the force analysis it came from (Remove: 0)
+  Split_proposal proposal;    ///< where (Remove: the default)
+  double description_length_before = 0.; ///< of the model at rest before the event (see Part_evolution)
+  double description_length_after = 0.;  ///< of the split model at rest (Remove: of the model without the part, not refitted)
+  double rms_before = 0.;     ///< RMS distance of the points to the model before the event
+  double rms_after = 0.;      ///< the same after it (for a split, after fitting the split model to rest)
+  bool accepted() const { return kind == Evolution_event_kind::Split; } ///< whether it is a split that was kept
 };
+
+/// \ingroup PkgBlendedShapeEvolution
+/// The name of an event kind, for output: "split", "undo", "remove".
+inline const char* evolution_event_name(Evolution_event_kind k)
+{
+  switch(k)
+  {
+  case Evolution_event_kind::Split: return "split";
+  case Evolution_event_kind::Undo: return "undo";
+  default: return "remove";
+  }
+}
 
 /// \ingroup PkgBlendedShapeEvolution
 /// The phases of Part_evolution::run(), as Default_evolution_visitor::on_evolution_phase() hears of them.
@@ -89,6 +103,9 @@ struct Default_evolution_visitor : Default_fitting_visitor
   /// A split did not pay for its parameters and was undone; `model` is the one restored.
   template <class Model>
   void on_undo(const Evolution_event& /*event*/, const Model& /*model*/) {}
+  /// A part no longer paid for its parameters and was removed; `model` is the one without it (not yet refitted).
+  template <class Model>
+  void on_remove(const Evolution_event& /*event*/, const Model& /*model*/) {}
 };
 
 /// \ingroup PkgBlendedShapeEvolution
@@ -117,10 +134,25 @@ struct Has_evolution_hooks<
   : std::true_type
 {};
 
+template <class Visitor, class Model, class = void>
+struct Has_remove_hook : std::false_type
+{};
+template <class Visitor, class Model>
+struct Has_remove_hook<Visitor, Model,
+                       std::void_t<decltype(std::declval<Visitor&>().on_remove(std::declval<const Evolution_event&>(),
+                                                                               std::declval<const Model&>()))>>
+  : std::true_type
+{};
+
 template <class Visitor, class Model>
 void notify_event(Visitor& visitor, const Evolution_event& e, const Model& model)
 {
-  if constexpr(Has_evolution_hooks<Visitor, Model>::value)
+  if(e.kind == Evolution_event_kind::Remove)
+  {
+    if constexpr(Has_remove_hook<Visitor, Model>::value)
+      visitor.on_remove(e, model);
+  }
+  else if constexpr(Has_evolution_hooks<Visitor, Model>::value)
   {
     if(e.accepted())
       visitor.on_split(e, model);
@@ -159,7 +191,9 @@ until no split is kept:
    the boundary with the largest flux difference down;
 3. for each proposal in turn: split (apply_split(), `h = 0`: no point of the
    surface moves), fit to rest, and keep the split if it pays for its
-   parameters, otherwise restore the model exactly and try the next one.
+   parameters, otherwise restore the model exactly and try the next one;
+4. after a split is kept, remove the parts that no longer pay for their
+   parameters (remove_unpaid_parts()) and fit to rest again if any went.
 
 Whether a split pays for its parameters is a description-length test (the
 paper has no stopping rule). With Gaussian residuals of unknown variance,
@@ -173,6 +207,10 @@ at rest (as mean_squared_distance() measures it) (Rissanen's MDL, which coincide
 criterion). A split adds a component and a blend, about twenty parameters:
 it is kept only if `L` falls. On 10000 points it must lower the mean
 squared distance by 1.5 % or more; a split that only fits noise does not.
+The same test removes a part: a part whose region has shrunk to nothing,
+or that hides inside its base, or that later parts made redundant, is
+merged back into its base (Blended_shape::merge_split()) when the model
+without it, as it is, has a description length no larger.
 
 Stray points: the fits of evolution are least-squares fits (the paper's)
 of the points that are not isolated: a point is isolated when its distance
@@ -187,7 +225,7 @@ propose_splits() and try_split(). The abort callback is passed to every fit;
 when it stops the fit of a split model, the split is undone, so the model is
 always one that was kept. The visitor is any fitting visitor
 (Default_fitting_visitor); its `on_split()` and `on_undo()` are called if it
-has both (Default_evolution_visitor).
+has both, its `on_remove()` if it has it (Default_evolution_visitor).
 
 \tparam GeomTraits a CGAL kernel
 */
@@ -261,16 +299,62 @@ public:
   /// distance, as much as a split must gain, and a split model's search
   /// starts afresh: measured by one method before a split and by the other
   /// after it, splits would be judged on search errors.
-  double mean_squared_distance()
-  {
-    Fitter fresh(m_kept, m_fitter->model(), m_fitter->settings());
-    return (std::min)(m_fitter->mean_squared_distance(true), fresh.mean_squared_distance(true));
-  }
+  double mean_squared_distance() { return mean_squared_distance_of(*m_fitter); }
 
   /// The description length `L = (n/2) ln(MSD) + (k/2) ln(n)` of the
   /// points given the current model (see the class description), with the
   /// mean squared distance of mean_squared_distance().
-  double description_length() { return description_length_of(mean_squared_distance()); }
+  double description_length() { return description_length_of(mean_squared_distance(), m_fitter->model()); }
+
+  /*!
+  Removes the parts that no longer pay for their parameters: for each
+  component added by a split on which no blend is based (last first), the
+  model without it (Blended_shape::merge_split(), the other parameters as
+  they are) replaces the current one if its description length is no
+  larger. Records an `Evolution_event_kind::Remove` event and calls the
+  visitor's on_remove() for each. The model is then no longer at rest: fit
+  it again (run() does). Returns the number of parts removed.
+  */
+  template <class Visitor = Default_evolution_visitor>
+  std::size_t remove_unpaid_parts(Visitor&& visitor = Visitor())
+  {
+    std::size_t removed = 0;
+    double msd_before = -1.; // measured when first needed
+    for(std::size_t c = model().shape().number_of_components(); c-- > 1;)
+    {
+      Blended_shape<GeomTraits> without = model().shape();
+      try
+      {
+        without.merge_split(c);
+      }
+      catch(const std::logic_error&)
+      {
+        continue; // not a split part, or others are built on it
+      }
+      auto merged = std::make_unique<Fitter>(m_kept, Model(without, model().translation(), model().quaternion()),
+                                             m_fitter->settings());
+      Evolution_event e;
+      e.kind = Evolution_event_kind::Remove;
+      e.iteration = m_iterations;
+      e.component = c;
+      if(msd_before < 0.)
+        msd_before = mean_squared_distance();
+      const double msd_after = mean_squared_distance_of(*merged);
+      e.description_length_before = description_length_of(msd_before, model());
+      e.description_length_after = description_length_of(msd_after, merged->model());
+      e.rms_before = std::sqrt(msd_before);
+      e.rms_after = std::sqrt(msd_after);
+      if(!(e.description_length_after <= e.description_length_before))
+        continue;
+      m_fitter = std::move(merged);
+      m_rest_converged = false;
+      msd_before = msd_after;
+      m_events.push_back(e);
+      internal::notify_event(visitor, m_events.back(), model());
+      ++removed;
+    }
+    return removed;
+  }
 
   /// The split proposals of the current model (which should be at rest):
   /// up to `maximum_split_tries`, from the boundaries of the force analysis
@@ -309,7 +393,7 @@ public:
     e.boundary = proposal.boundary;
     e.proposal = proposal;
     const double msd_before = mean_squared_distance();
-    e.description_length_before = description_length_of(msd_before);
+    e.description_length_before = description_length_of(msd_before, model());
     e.rms_before = std::sqrt(msd_before);
     // The split model gets a fitter of its own; the one at rest before stays
     // as it is, to come back to.
@@ -327,7 +411,7 @@ public:
     internal::notify_phase(visitor, Evolution_phase::Split_fit, m_fitter->model().shape().number_of_components());
     const Fitting_status status = fit_to_rest(visitor, callback);
     const double msd_after = mean_squared_distance();
-    e.description_length_after = description_length_of(msd_after);
+    e.description_length_after = description_length_of(msd_after, model());
     e.rms_after = std::sqrt(msd_after);
     if(!status.aborted && e.description_length_after < e.description_length_before)
     {
@@ -376,6 +460,11 @@ public:
           break;
       if(!kept)
         break;
+      if(remove_unpaid_parts(visitor) > 0)
+      {
+        internal::notify_phase(visitor, Evolution_phase::Fit_to_rest, model().shape().number_of_components());
+        fit_to_rest(visitor, callback);
+      }
     }
     status.iterations = m_iterations - start;
     status.aborted = m_last_fit.aborted;
@@ -385,17 +474,24 @@ public:
   }
 
 private:
-  double description_length_of(double msd) const
+  // See mean_squared_distance().
+  double mean_squared_distance_of(Fitter& fitter) const
   {
-    const double n = double(m_fitter->number_of_points());
+    Fitter fresh(m_kept, fitter.model(), fitter.settings());
+    return (std::min)(fitter.mean_squared_distance(true), fresh.mean_squared_distance(true));
+  }
+
+  // L of `model` at mean squared distance `msd`.
+  double description_length_of(double msd, const Model& model) const
+  {
+    const double n = double(m_kept.size());
     // A floor far below any noise keeps the logarithm finite on exact data.
-    return 0.5 * n * std::log((std::max)(msd, 1e-300)) + 0.5 * double(free_parameters()) * std::log(n);
+    return 0.5 * n * std::log((std::max)(msd, 1e-300)) + 0.5 * double(free_parameters(model)) * std::log(n);
   }
 
   // The parameters that move in a fit (the fixed ones are not described).
-  std::size_t free_parameters() const
+  static std::size_t free_parameters(const Model& m)
   {
-    const Model& m = m_fitter->model();
     std::size_t k = 0;
     for(std::size_t i = 0; i < m.number_of_parameters(); ++i)
       k += m.is_fixed_parameter(i) ? 0 : 1;

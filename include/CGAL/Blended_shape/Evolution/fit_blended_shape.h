@@ -54,6 +54,8 @@ struct Input_frame_visitor
   void on_split(const Evolution_event& e, const Model& model) { notify(e, model); }
   template <class Model>
   void on_undo(const Evolution_event& e, const Model& model) { notify(e, model); }
+  template <class Model>
+  void on_remove(const Evolution_event& e, const Model& model) { notify(e, model); }
 
 private:
   template <class Model>
@@ -156,7 +158,6 @@ auto fit_blended_shape(const PointRange& points, const NamedParameters& np = CGA
   typedef internal::Point_range_types<PointRange, NamedParameters> Types;
   typedef typename Types::Geom_traits Geom_traits;
   typedef Blended_fit_result<Geom_traits> Result;
-  typedef typename Result::Model Model;
   const typename Types::Point_map point_map = Types::point_map(np);
   const std::function<bool(double)> callback = CGAL::parameters::choose_parameter(
     CGAL::parameters::get_parameter(np, CGAL::internal_np::callback), std::function<bool(double)>());
