@@ -299,7 +299,20 @@ public:
   /// distance, as much as a split must gain, and a split model's search
   /// starts afresh: measured by one method before a split and by the other
   /// after it, splits would be judged on search errors.
-  double mean_squared_distance() { return mean_squared_distance_of(*m_fitter); }
+  double mean_squared_distance()
+  {
+    // The fresh search costs as much as a fitter: measured once per model
+    // (the proposals of one rest state share the measure before their split).
+    const Eigen::VectorXd q = m_fitter->model().parameters();
+    if(m_measured_fitter != m_fitter.get() || m_measured_parameters.size() != q.size() ||
+       !(m_measured_parameters.array() == q.array()).all())
+    {
+      m_measured = mean_squared_distance_of(*m_fitter);
+      m_measured_fitter = m_fitter.get();
+      m_measured_parameters = q;
+    }
+    return m_measured;
+  }
 
   /// The description length `L = (n/2) ln(MSD) + (k/2) ln(n)` of the
   /// points given the current model (see the class description), with the
@@ -506,6 +519,10 @@ private:
   std::size_t m_iterations = 0;
   Fitting_status m_last_fit;    // of the last fit to rest
   bool m_rest_converged = false; // whether the current model's fit came to rest
+  // The last mean_squared_distance(): of the model of this fitter, at these parameters.
+  const Fitter* m_measured_fitter = nullptr;
+  Eigen::VectorXd m_measured_parameters;
+  double m_measured = 0.;
 };
 
 } // namespace Blended_shapes
