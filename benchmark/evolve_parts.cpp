@@ -55,17 +55,6 @@ std::vector<K::Point_3> scan(const Mesh& m)
   return pts;
 }
 
-// An ellipsoid (1, 0.8, 0.6) with a round part (radius 0.3, length 0.5) on
-// top: noisy samples of the union's surface.
-std::vector<K::Point_3> body_with_part(unsigned seed)
-{
-  const Primitive_model body(BS::Superquadric_ellipsoid<K>(1., 0.8, 0.6, 1., 1.));
-  const Primitive_model part(BS::Superquadric_ellipsoid<K>(0.3, 0.3, 0.5, 0.4, 1.), Eigen::Vector3d(0., 0., 0.9),
-                             Eigen::Vector4d(1., 0., 0., 0.));
-  std::mt19937_64 rng(seed);
-  return BS::testing::scan_of_union<K::Point_3>(body, part, 4000, 0.006, rng);
-}
-
 std::vector<K::Point_3> box_cylinder_scan()
 {
   Mesh m;
@@ -84,20 +73,21 @@ void evolve(const std::string& name, const std::vector<K::Point_3>& points, std:
 {
   const auto r = BS::fit_blended_shape(points, BS::parameters::number_of_threads(threads));
   // The least-squares RMS of evolution: before, that of its start; after,
-  // that of the last split kept (the events measure both).
+  // that of the last split kept or part removed (the events measure both;
+  // a removal is measured before the model is fitted to rest again).
   const CGAL::Bbox_3 box = CGAL::bbox_3(points.begin(), points.end());
   const double diagonal = std::sqrt(CGAL::square(box.xmax() - box.xmin()) + CGAL::square(box.ymax() - box.ymin()) +
                                     CGAL::square(box.zmax() - box.zmin()));
   const double before = r.events.empty() ? r.first_fit.metrics.rms : r.events.front().rms_before;
   double after = before;
   for(const auto& e : r.events)
-    if(e.accepted())
+    if(e.kind != BS::Evolution_event_kind::Undo) // a split kept or a part removed
       after = e.rms_after;
   std::cout << "| " << name << " | " << points.size() << " | " << std::fixed << std::setprecision(2)
             << 100. * before / diagonal << " | " << 100. * after / diagonal << " | " << r.number_of_parts() << " | "
             << 100. * r.metrics.rms_over_bbox_diagonal << " | ";
   for(const auto& e : r.events)
-    std::cout << (e.accepted() ? "split " : "undo ") << e.component << " (L " << std::setprecision(0)
+    std::cout << BS::evolution_event_name(e.kind) << " " << e.component << " (L " << std::setprecision(0)
               << e.description_length_before << " -> " << e.description_length_after << std::setprecision(4)
               << ", RMS/diag " << 100. * e.rms_before / diagonal << " -> " << 100. * e.rms_after / diagonal
               << " %); " << std::setprecision(2);
@@ -113,7 +103,7 @@ void evolve_synthetic_and_scans(std::size_t threads, const char* header)
   BS::read_points(std::string(BLENDED_SHAPE_DATA_DIR) + "/scans/pcl_mug_scan.xyz", mug);
   evolve("real mug scan (data/scans/pcl_mug_scan.xyz)", mug, threads);
   for(unsigned seed : {1u, 2u, 3u})
-    evolve("ellipsoid + part, seed " + std::to_string(seed), body_with_part(seed), threads);
+    evolve("ellipsoid + part, seed " + std::to_string(seed), BS::testing::body_with_part_scan<K>(4000, seed), threads);
   std::mt19937_64 rng(7);
   for(int k = 0; k < 6; ++k)
   {

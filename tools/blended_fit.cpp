@@ -99,13 +99,16 @@ Json event_json(const BS::Evolution_event& e)
   j["kind"] = BS::evolution_event_name(e.kind);
   j["iteration"] = double(e.iteration);
   j["component"] = double(e.component);
-  j["new_component"] = double(e.new_component);
-  j["boundary"] = double(e.boundary);
-  Json region = Json::object();
-  region["chart"] = double(e.proposal.chart);
-  region["ellipse"] = numbers(e.proposal.region.data(), std::size_t(e.proposal.region.size()));
-  region["half_width"] = number(e.proposal.half_width);
-  j["region"] = region;
+  if(e.kind != BS::Evolution_event_kind::Remove) // (a removal has no proposal)
+  {
+    j["new_component"] = double(e.new_component);
+    j["boundary"] = double(e.boundary);
+    Json region = Json::object();
+    region["chart"] = double(e.proposal.chart);
+    region["ellipse"] = numbers(e.proposal.region.data(), std::size_t(e.proposal.region.size()));
+    region["half_width"] = number(e.proposal.half_width);
+    j["region"] = region;
+  }
   j["rms_before"] = number(e.rms_before);
   j["rms_after"] = number(e.rms_after);
   j["description_length_before"] = number(e.description_length_before);
@@ -210,9 +213,8 @@ private:
     parts = model.shape().number_of_components();
     ++events;
     if(!quiet)
-      std::cerr << "blended_fit: event " << events << ": "
-                << (e.kind == BS::Evolution_event_kind::Remove ? "part " : "split of component ") << e.component << " "
-                << (e.accepted() ? "kept" : e.kind == BS::Evolution_event_kind::Undo ? "undone" : "removed") << " (RMS " << e.rms_before << " -> " << e.rms_after
+      std::cerr << "blended_fit: event " << events << ": " << BS::evolution_event_name(e.kind) << " of component "
+                << e.component << (e.accepted() ? " kept" : "") << " (RMS " << e.rms_before << " -> " << e.rms_after
                 << ", description length " << e.description_length_before << " -> " << e.description_length_after
                 << "); " << parts << (parts == 1 ? " part" : " parts") << "\n";
     if(!trace.empty())

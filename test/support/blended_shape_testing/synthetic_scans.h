@@ -128,6 +128,21 @@ std::vector<Point_3> scan_of_union(const Model& body, const Model& part, std::si
   return points;
 }
 
+// The body with a part of the evolution tests and benchmarks: an ellipsoid
+// (1, 0.8, 0.6) with a round part (0.3, 0.3, 0.5, exponents 0.4, 1) on top
+// (centre at z = 0.9), scanned by scan_of_union() with noise 0.006 (0.2 %
+// of the diagonal), `n` samples per surface, random engine seeded `seed`.
+template <class K>
+std::vector<typename K::Point_3> body_with_part_scan(std::size_t n, unsigned seed)
+{
+  typedef Deformable_model<Superquadric_ellipsoid<K>> Model;
+  const Model body(Superquadric_ellipsoid<K>(1., 0.8, 0.6, 1., 1.));
+  const Model part(Superquadric_ellipsoid<K>(0.3, 0.3, 0.5, 0.4, 1.), Eigen::Vector3d(0., 0., 0.9),
+                   Eigen::Vector4d(1., 0., 0., 0.));
+  std::mt19937_64 rng(seed);
+  return scan_of_union<typename K::Point_3>(body, part, n, 0.006, rng);
+}
+
 } // namespace testing
 } // namespace Blended_shapes
 } // namespace CGAL

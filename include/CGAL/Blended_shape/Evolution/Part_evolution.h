@@ -65,15 +65,16 @@ inline const char* evolution_event_name(Evolution_event_kind k)
   {
   case Evolution_event_kind::Split: return "split";
   case Evolution_event_kind::Undo: return "undo";
-  default: return "remove";
+  case Evolution_event_kind::Remove: return "remove";
   }
+  return "unknown";
 }
 
 /// \ingroup PkgBlendedShapeEvolution
 /// The phases of Part_evolution::run(), as Default_evolution_visitor::on_evolution_phase() hears of them.
 enum class Evolution_phase
 {
-  Fit_to_rest,    ///< the current model is fitted to rest (Part_evolution::fit_to_rest())
+  Fit_to_rest,    ///< the current model is fitted to rest (Part_evolution::fit_to_rest()): at the start, and after parts were removed
   Force_analysis, ///< the forces at rest are analysed and splits proposed (Part_evolution::propose_splits())
   Split_fit       ///< a split model is fitted to rest, to be kept or undone (Part_evolution::try_split())
 };
@@ -223,7 +224,8 @@ which is exactly what must pull the model into a split.
 Each phase is driven by run(), or step by step with fit_to_rest(),
 propose_splits() and try_split(). The abort callback is passed to every fit;
 when it stops the fit of a split model, the split is undone, so the model is
-always one that was kept. The visitor is any fitting visitor
+always one that was kept (or, if it stops the fit after a removal, the model
+without the removed part, not yet at rest). The visitor is any fitting visitor
 (Default_fitting_visitor); its `on_split()` and `on_undo()` are called if it
 has both, its `on_remove()` if it has it (Default_evolution_visitor).
 
@@ -269,10 +271,14 @@ public:
   /// The current model: the last one kept.
   const Model& model() const { return m_fitter->model(); }
   /// The fitter of the current model (its points: those not isolated).
-  Fitter& fitter() { return *m_fitter; }
+  Fitter& fitter()
+  {
+    ++m_version; // the caller may move the model
+    return *m_fitter;
+  }
   /// The settings.
   const Evolution_settings& settings() const { return m_settings; }
-  /// The splits tried so far, kept or undone, in order.
+  /// The events so far (splits kept or undone, parts removed), in order.
   const std::vector<Evolution_event>& events() const { return m_events; }
   /// The indices (in the input order, increasing) of the points judged isolated: not fitted.
   const std::vector<std::size_t>& isolated_points() const { return m_isolated; }
@@ -285,6 +291,7 @@ public:
                              const std::function<bool(double)>& callback = std::function<bool(double)>())
   {
     m_last_fit = m_fitter->run(visitor, callback);
+    ++m_version;
     m_iterations += m_last_fit.iterations;
     m_rest_converged = m_last_fit.converged;
     return m_last_fit;
@@ -301,17 +308,12 @@ public:
   /// after it, splits would be judged on search errors.
   double mean_squared_distance()
   {
-    // The fresh search costs as much as a fitter: measured once per model
-    // (the proposals of one rest state share the measure before their split).
-    const Eigen::VectorXd q = m_fitter->model().parameters();
-    if(m_measured_fitter != m_fitter.get() || m_measured_parameters.size() != q.size() ||
-       !(m_measured_parameters.array() == q.array()).all())
-    {
-      m_measured = mean_squared_distance_of(*m_fitter);
-      m_measured_fitter = m_fitter.get();
-      m_measured_parameters = q;
-    }
-    return m_measured;
+    // The fresh search costs as much as a fitter: measured once per state of
+    // the current fitter (the proposals of one rest state share the measure
+    // before their split; an undo brings it back with the fitter).
+    if(m_measured.version != m_version)
+      m_measured = Measure{m_version, mean_squared_distance_of(*m_fitter)};
+    return m_measured.value;
   }
 
   /// The description length `L = (n/2) ln(MSD) + (k/2) ln(n)` of the
@@ -327,6 +329,12 @@ public:
   larger. Records an `Evolution_event_kind::Remove` event and calls the
   visitor's on_remove() for each. The model is then no longer at rest: fit
   it again (run() does). Returns the number of parts removed.
+
+  The model with the part is measured as mean_squared_distance() does (the
+  smaller of the followed and a fresh search), the one without it by a
+  fresh search only (its fitter is new): this leans towards keeping a part,
+  by the search errors that the class description puts at about 1 % of the
+  mean squared distance.
   */
   template <class Visitor = Default_evolution_visitor>
   std::size_t remove_unpaid_parts(Visitor&& visitor = Visitor())
@@ -360,6 +368,7 @@ public:
       if(!(e.description_length_after <= e.description_length_before))
         continue;
       m_fitter = std::move(merged);
+      ++m_version;
       m_rest_converged = false;
       msd_before = msd_after;
       m_events.push_back(e);
@@ -408,6 +417,8 @@ public:
     const double msd_before = mean_squared_distance();
     e.description_length_before = description_length_of(msd_before, model());
     e.rms_before = std::sqrt(msd_before);
+    const std::size_t version_before = m_version;
+    const Measure measured_before = m_measured;
     // The split model gets a fitter of its own; the one at rest before stays
     // as it is, to come back to.
     std::unique_ptr<Fitter> before;
@@ -420,6 +431,7 @@ public:
     {
       return false; // a region the shape refuses: nothing changed
     }
+    ++m_version;
     m_fitter->start_from_foot_points_of(*before);
     internal::notify_phase(visitor, Evolution_phase::Split_fit, m_fitter->model().shape().number_of_components());
     const Fitting_status status = fit_to_rest(visitor, callback);
@@ -436,6 +448,8 @@ public:
     // Exactly as before: the model (parameters and structure) and its fitter
     // with the closest points it followed.
     m_fitter = std::move(before);
+    m_version = version_before;
+    m_measured = measured_before;
     m_rest_converged = converged_before;
     e.kind = Evolution_event_kind::Undo;
     m_events.push_back(e);
@@ -467,7 +481,8 @@ public:
         break;
       }
       bool kept = false;
-      internal::notify_phase(visitor, Evolution_phase::Force_analysis, model().shape().number_of_components());
+      const std::size_t parts_before = model().shape().number_of_components();
+      internal::notify_phase(visitor, Evolution_phase::Force_analysis, parts_before);
       for(const Split_proposal& p : propose_splits())
         if((kept = try_split(p, visitor, callback)) || m_last_fit.aborted)
           break;
@@ -477,6 +492,10 @@ public:
       {
         internal::notify_phase(visitor, Evolution_phase::Fit_to_rest, model().shape().number_of_components());
         fit_to_rest(visitor, callback);
+        // No more parts than before the split (the split part itself went):
+        // no progress, and the next round could propose the same split again.
+        if(model().shape().number_of_components() <= parts_before)
+          break;
       }
     }
     status.iterations = m_iterations - start;
@@ -519,10 +538,16 @@ private:
   std::size_t m_iterations = 0;
   Fitting_status m_last_fit;    // of the last fit to rest
   bool m_rest_converged = false; // whether the current model's fit came to rest
-  // The last mean_squared_distance(): of the model of this fitter, at these parameters.
-  const Fitter* m_measured_fitter = nullptr;
-  Eigen::VectorXd m_measured_parameters;
-  double m_measured = 0.;
+  // The state of the current fitter: changes whenever its model may have
+  // moved or it was replaced (restored with it by an undo).
+  std::size_t m_version = 0;
+  // The last mean_squared_distance(), and the state it measured.
+  struct Measure
+  {
+    std::size_t version = std::size_t(-1);
+    double value = 0.;
+  };
+  Measure m_measured;
 };
 
 } // namespace Blended_shapes

@@ -75,7 +75,7 @@ struct Blended_fit_result
 {
   typedef Deformable_blended_model<GeomTraits> Model; ///< the model type
   Model model;                          ///< the evolved model, in the frame of the input points
-  /// The splits tried, kept or undone, in order. Their RMS distances are in
+  /// The events (splits kept or undone, parts removed), in order. Their RMS distances are in
   /// the unit of the input points, their description lengths those of the
   /// points in that unit (see Part_evolution).
   std::vector<Evolution_event> events;
@@ -98,7 +98,7 @@ struct Blended_fit_result
   Fit_result<GeomTraits> first_fit;
   /// The number of parts of the model (its components).
   std::size_t number_of_parts() const { return model.shape().number_of_components(); }
-  /// The number of splits kept.
+  /// The number of splits kept (a part removed later counts too: see number_of_parts()).
   std::size_t number_of_splits() const
   {
     std::size_t n = 0;
@@ -119,7 +119,8 @@ cannot fit the data, each kept only if it pays for its parameters).
 Evolution's fits are least-squares fits of the points that are not
 isolated (see Part_evolution), so it starts from the least-squares fit: a
 robust fit of an object made of parts fits its largest part and takes the
-others for strays. When evolution keeps no split, the model is that of
+others for strays. When evolution ends with one part (no split kept, or
+every part split off removed again), the model is that of
 fit_superquadric() with the named parameters as given (robust to stray
 points by default), bit for bit, unless that fit judged more than half of
 the points stray: a fit that explains a minority of the points fits one
@@ -140,11 +141,11 @@ result does not depend on the unit of the points or on where they are.
     `maximum_split_tries`, `threshold_factor`, `analysis_resolution`;
   - `point_map`, `geom_traits`, `try_all_axes`, `reference_mesh`: as for fit_superquadric();
   - `visitor`: a fitting visitor (Default_fitting_visitor), whose
-    `on_split()` and `on_undo()` are called too if it has them
-    (Default_evolution_visitor), with the event and the model in the frame
-    and unit of the input, as in the result;
+    `on_split()` and `on_undo()` are called too if it has them, and
+    `on_remove()` if it has it (Default_evolution_visitor), with the event
+    and the model in the frame and unit of the input, as in the result;
   - `callback`: as for fit_superquadric(), passed to every fit; when it
-    stops evolution, the model is the last one kept.
+    stops evolution, the model is the last one kept (see Part_evolution).
 
 \throws Input_error if the points are unusable; std::invalid_argument on invalid parameters.
 */
@@ -190,7 +191,7 @@ auto fit_blended_shape(const PointRange& points, const NamedParameters& np = CGA
     iterations += result.status.iterations;
     for(const Evolution_event& e : evolution.events())
       result.events.push_back(internal::event_in_input_unit(e, normalization.scale(), n));
-    if(result.number_of_splits() > 0)
+    if(evolution.model().shape().number_of_components() > 1)
     {
       result.model = normalization.model_from_normalized(evolution.model());
       Fitting_status rest;
