@@ -295,6 +295,28 @@ void test_good_run(const Temp_dir& dir)
   blended_shape_test::report("blended_fit_good_run");
 }
 
+// Data made of parts (a body with a part, testing::body_with_part_scan()):
+// the tool returns two parts, says so in its summary and its progress
+// (the iterations of a split model's fit count its parts), and traces the split.
+void test_parts_run(const Temp_dir& dir)
+{
+  write_points(dir / "parts.xyz", BS::testing::body_with_part_scan<K>(1500, 1));
+  std::string err, out;
+  BS_CHECK(run(quote(tool) + " " + quote(dir / "parts.xyz") + " --max-parts 2 --trace " + quote(dir / "parts_trace"),
+               dir, &err, &out) == 0,
+           "run on data made of parts failed: " << err);
+  Json_checker summary(out);
+  BS_CHECK(summary.valid(), "the summary is not valid JSON:\n" << out);
+  BS_CHECK(summary.numbers["parts"] == 2 && summary.numbers["genus"] == 0 && count_of(out, "\"accepted\": true") == 1,
+           "parts " << summary.numbers["parts"] << ", genus " << summary.numbers["genus"] << ":\n" << out);
+  BS_CHECK(err.find("  parts 2  holes 0") != std::string::npos, "the progress of a split model's fit does not count its parts");
+  BS_CHECK(err.find("split of component 0 kept") != std::string::npos, "the progress does not name the kept split");
+  BS_CHECK(exists(dir / "parts_trace/01_split.ply") || exists(dir / "parts_trace/02_split.ply") ||
+             exists(dir / "parts_trace/03_split.ply"),
+           "no trace of the kept split");
+  blended_shape_test::report("blended_fit_parts");
+}
+
 // 200 strays over 10 times the box of 800 points: by default they are found
 // (a stray within the noise of the surface may pass for an inlier) and
 // listed by --strays; --no-robust judges none stray.
@@ -375,6 +397,7 @@ int main()
   Temp_dir dir("blended_test_fit");
   test_bad_input(dir);
   test_good_run(dir);
+  test_parts_run(dir);
   test_strays(dir);
   test_any_scale(dir);
   blended_shape_test::report("test_blended_fit");

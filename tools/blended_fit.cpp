@@ -194,8 +194,9 @@ struct Reporter : BS::Default_evolution_visitor
       std::cerr << "blended_fit: iteration " << it << "  energy " << energy << "  points " << n << "  parts " << parts
                 << "  holes 0\n";
   }
-  void on_evolution_phase(BS::Evolution_phase p, std::size_t n) const
+  void on_evolution_phase(BS::Evolution_phase p, std::size_t n)
   {
+    parts = n; // the iterations that follow fit a model of n parts (a split model's, say)
     if(!quiet)
       std::cerr << "blended_fit: part evolution: " << BS::evolution_phase_name(p) << " (" << n
                 << (n == 1 ? " part" : " parts") << ")\n";

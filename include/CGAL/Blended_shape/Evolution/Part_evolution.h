@@ -360,7 +360,9 @@ public:
       e.component = c;
       if(msd_before < 0.)
         msd_before = mean_squared_distance();
-      const double msd_after = mean_squared_distance_of(*merged);
+      // `merged` is new: its search is the fresh one (mean_squared_distance_of()
+      // would make an identical second fitter).
+      const double msd_after = merged->mean_squared_distance(true);
       e.description_length_before = description_length_of(msd_before, model());
       e.description_length_after = description_length_of(msd_after, merged->model());
       e.rms_before = std::sqrt(msd_before);
