@@ -12,7 +12,10 @@
 #include <CGAL/IO/polygon_soup_io.h>
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 
+#include <nlohmann/json.hpp>
+
 #include <cctype>
+#include <iomanip>
 #include <cmath>
 #include <fstream>
 #include <map>
@@ -311,9 +314,15 @@ void test_parts_run(const Temp_dir& dir)
            "parts " << summary.numbers["parts"] << ", genus " << summary.numbers["genus"] << ":\n" << out);
   BS_CHECK(err.find("  parts 2  holes 0") != std::string::npos, "the progress of a split model's fit does not count its parts");
   BS_CHECK(err.find("split of component 0 kept") != std::string::npos, "the progress does not name the kept split");
-  BS_CHECK(exists(dir / "parts_trace/01_split.ply") || exists(dir / "parts_trace/02_split.ply") ||
-             exists(dir / "parts_trace/03_split.ply"),
-           "no trace of the kept split");
+  // The trace's files are numbered by event (from 1), in the order of the summary's events.
+  const nlohmann::json events = nlohmann::json::parse(out, nullptr, false)["evolution"]["events"];
+  std::size_t kept = 0;
+  for(std::size_t i = 0; i < events.size(); ++i)
+    if(events[i].value("accepted", false))
+      kept = i + 1;
+  std::ostringstream kept_trace;
+  kept_trace << "parts_trace/" << std::setw(2) << std::setfill('0') << kept << "_split.ply";
+  BS_CHECK(kept > 0 && exists(dir / kept_trace.str()), "no trace of the kept split (" << kept_trace.str() << ")");
   blended_shape_test::report("blended_fit_parts");
 }
 
