@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: LGPL-3.0-or-later
-#ifndef CGAL_BLENDED_SHAPE_EVOLUTION_INTERNAL_ISOLATED_POINTS_H
-#define CGAL_BLENDED_SHAPE_EVOLUTION_INTERNAL_ISOLATED_POINTS_H
+#ifndef CGAL_BLENDED_SHAPE_INTERNAL_ISOLATED_POINTS_H
+#define CGAL_BLENDED_SHAPE_INTERNAL_ISOLATED_POINTS_H
 
 #include <CGAL/Orthogonal_k_neighbor_search.h>
 #include <CGAL/Search_traits_3.h>
@@ -61,4 +61,4 @@ inline std::vector<bool> isolated_points(const std::vector<Eigen::Vector3d>& poi
 } // namespace Blended_shapes
 } // namespace CGAL
 
-#endif // CGAL_BLENDED_SHAPE_EVOLUTION_INTERNAL_ISOLATED_POINTS_H
+#endif // CGAL_BLENDED_SHAPE_INTERNAL_ISOLATED_POINTS_H
