@@ -9,7 +9,8 @@
 //   fit_single_superquadric --equivariance N [--output FILE]
 //   fit_single_superquadric --outliers FRACTION --outlier-box FACTOR [--fits N] [--output FILE]
 //
-// --points N: only the clouds of N points (2000, 20000 or 200000).
+// --points N: only the clouds of N points: 2000, 20000 or 200000 as above, or
+// any other N (20 fits of each view with the default integrator).
 // --threads N: the fits on N threads (Fitting_settings::number_of_threads;
 // default 0, all cores): the results are the same, only the times change.
 //
@@ -243,12 +244,16 @@ int main(int argc, char** argv)
     return write_table(output, table);
   }
   std::vector<Config> configs;
-  for(std::size_t n : {std::size_t(2000), std::size_t(20000), std::size_t(200000)})
+  std::vector<std::size_t> sizes = {2000, 20000, 200000};
+  if(only_points != 0 && std::find(sizes.begin(), sizes.end(), only_points) == sizes.end())
+    sizes = {only_points};
+  for(std::size_t n : sizes)
   {
     if((quick && n > 20000) || (only_points != 0 && n != only_points)) continue;
     // 100 fits at 2k points: enough to see how often a fit ends in a wrong
     // rest state (the last column), which is about 1 in 100 for single views.
-    const int shapes = n == 2000 ? 100 : (n == 20000 ? 4 : 2);
+    // Other sizes (--points N): 20 fits.
+    const int shapes = n == 2000 ? 100 : (n == 20000 ? 4 : (n == 200000 ? 2 : 20));
     for(bool single : {false, true})
     {
       configs.push_back({n, single, BS::Integrator::Gauss_newton, quick ? 2 : shapes, threads});
