@@ -7,12 +7,12 @@
 #include <CGAL/Blended_shape/Evolution/Evolution_settings.h>
 #include <CGAL/Blended_shape/Evolution/Force_regions.h>
 #include <CGAL/Blended_shape/Evolution/Split_proposal.h>
-#include <CGAL/Blended_shape/internal/isolated_points.h>
 #include <CGAL/Blended_shape/Fitting/Deformable_blended_model.h>
 #include <CGAL/Blended_shape/Fitting/Deformable_model_fitter.h>
 #include <CGAL/Blended_shape/Fitting/Fitting_settings.h>
 #include <CGAL/Blended_shape/Fitting/Fitting_visitor.h>
 #include <CGAL/Blended_shape/IO/check_points.h>
+#include <CGAL/Blended_shape/internal/isolated_points.h>
 
 #include <Eigen/Core>
 

@@ -3,8 +3,9 @@
 #define CGAL_BLENDED_SHAPE_FITTING_INITIALIZE_FROM_MOMENTS_H
 
 #include <CGAL/Blended_shape/IO/check_points.h>
-#include <CGAL/Blended_shape/internal/quaternion.h>
+#include <CGAL/Blended_shape/internal/isolated_points.h>
 #include <CGAL/Blended_shape/internal/point_range_types.h>
+#include <CGAL/Blended_shape/internal/quaternion.h>
 #include <CGAL/Blended_shape/parameters.h>
 
 #include <CGAL/Kernel_traits.h>
@@ -12,18 +13,16 @@
 #include <CGAL/boost/graph/named_params_helper.h>
 #include <CGAL/property_map.h>
 
-#include <CGAL/Blended_shape/internal/isolated_points.h>
-
 #include <Eigen/Dense>
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <cstddef>
 #include <optional>
+#include <stdexcept>
 #include <utility>
 #include <vector>
-#include <cmath>
-#include <stdexcept>
 
 namespace CGAL {
 namespace Blended_shapes {
