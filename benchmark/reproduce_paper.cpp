@@ -205,10 +205,10 @@ int main(int argc, char** argv)
      << (threads == 0 ? std::string("all cores") : std::to_string(threads)) << "; weighting: "
      << (robust ? "robust (Mixture, the default)" : "the paper's least squares") << "; "
      << (evolve ? "fit_blended_shape() (part evolution)" : "fit_superquadric() (one superquadric)") << "\n\n"
-     << "| data | points | param (paper / ours) | iter (paper / ours) | RMS_1,2,3 % paper | RMS_1,2,3 % ours "
+     << "| data | points | param (paper / ours) | iter (paper / ours: all, on all points) | RMS_1,2,3 % paper | RMS_1,2,3 % ours "
         "| parts (paper / ours) | holes | genus | seconds (ours) | iteration / sweep | Chamfer / diagonal (ours) |\n"
      << "|---|---:|---:|---:|---|---|---:|---:|---:|---:|---:|---:|\n";
-  cs << "data,source,points,paper_parameters,parameters,paper_iterations,iterations,paper_rms1,paper_rms2,paper_rms3,"
+  cs << "data,source,points,paper_parameters,parameters,paper_iterations,iterations,iterations_on_all_points,paper_rms1,paper_rms2,paper_rms3,"
         "rms1,rms2,rms3,paper_parts,parts,paper_holes,holes,paper_genus,genus,seconds,iteration_over_sweep,"
         "chamfer_over_diagonal,converged\n";
   std::cout << md.str() << std::flush;
@@ -242,7 +242,8 @@ int main(int argc, char** argv)
     const std::string ratio = f.iteration_over_sweep ? fixed(*f.iteration_over_sweep, 2) : std::string("-");
     std::ostringstream row;
     row << "| " << e.name << " | " << m.number_of_points << " | " << p.parameters << " / " << m.number_of_parameters
-        << " | " << p.iterations << " / " << m.iterations << (m.converged ? "" : " (not converged)") << " | "
+        << " | " << p.iterations << " / " << m.iterations << ", " << m.iterations_on_all_points
+        << (m.converged ? "" : " (not converged)") << " | "
         << fixed(p.rms[0], 1) << ", " << fixed(p.rms[1], 1) << ", " << fixed(p.rms[2], 1) << " | "
         << fixed(100. * m.relative_rms[0], 1) << ", " << fixed(100. * m.relative_rms[1], 1) << ", "
         << fixed(100. * m.relative_rms[2], 1) << " | " << p.parts << " / " << f.parts << " | " << p.holes << " / "
@@ -251,7 +252,8 @@ int main(int argc, char** argv)
     std::cout << row.str() << std::flush;
     md << row.str();
     cs << '"' << e.name << "\",\"" << e.source << "\"," << m.number_of_points << ',' << p.parameters << ','
-       << m.number_of_parameters << ',' << p.iterations << ',' << m.iterations << ',' << p.rms[0] << ',' << p.rms[1]
+       << m.number_of_parameters << ',' << p.iterations << ',' << m.iterations << ','
+       << m.iterations_on_all_points << ',' << p.rms[0] << ',' << p.rms[1]
        << ',' << p.rms[2] << ',' << 100. * m.relative_rms[0] << ',' << 100. * m.relative_rms[1] << ','
        << 100. * m.relative_rms[2] << ',' << p.parts << ',' << f.parts << ',' << p.holes << ',' << f.holes << ','
        << p.genus << ',' << f.genus << ',' << m.seconds << ','

@@ -232,9 +232,16 @@ void test_good_run(const Temp_dir& dir)
   BS_CHECK(err.find("iteration") != std::string::npos && err.find("parts") != std::string::npos, "no progress shown");
   Json_checker summary(out);
   BS_CHECK(summary.valid(), "the summary is not valid JSON:\n" << out);
-  for(const char* key : {"points", "parameters", "iterations", "relative_rms", "rms_over_bbox_diagonal",
-                         "stray_points", "parts", "holes", "genus", "evolution", "seconds", "model"})
+  for(const char* key : {"points", "parameters", "iterations", "iterations_on_all_points", "relative_rms",
+                         "rms_over_bbox_diagonal", "stray_points", "parts", "holes", "genus", "evolution", "seconds",
+                         "model"})
     BS_CHECK(summary.keys.count(key) == 1, "missing key " << key);
+  // The short fits that compare starts use 160 of the 800 points; the fits
+  // to rest use all.
+  BS_CHECK(summary.numbers["iterations_on_all_points"] > 0 &&
+             summary.numbers["iterations_on_all_points"] < summary.numbers["iterations"],
+           "iterations on all points " << summary.numbers["iterations_on_all_points"] << " of "
+                                       << summary.numbers["iterations"]);
   // A clean single superquadric: evolution tries splits and keeps none.
   BS_CHECK(summary.numbers["points"] == 800 && summary.numbers["parameters"] == 12 && summary.numbers["parts"] == 1,
            "points / parameters / parts: " << summary.numbers["points"] << " / " << summary.numbers["parameters"]

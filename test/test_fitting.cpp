@@ -22,6 +22,7 @@
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Simple_cartesian.h>
 
+#include <algorithm>
 #include <iomanip>
 #include <random>
 #include <sstream>
@@ -251,12 +252,21 @@ void test_same_bits_at_any_number_of_threads(std::mt19937_64& rng)
   const Model<K> truth = random_superellipsoid<K>(rng);
   const auto pts = scan<K>(truth, cloud_size(3000), true, 0.003, rng);
   std::vector<double> energies[2];
+  std::vector<std::size_t> points_used;
   auto fit = [&](std::size_t threads) {
     return BS::fit_superquadric(
-      pts, BS::parameters::number_of_threads(threads).visitor(BS::testing::Energy_recorder(energies[threads - 1])));
+      pts, BS::parameters::number_of_threads(threads).visitor(
+             BS::testing::Energy_recorder(energies[threads - 1], threads == 1 ? &points_used : nullptr)));
   };
   const auto one = fit(1), two = fit(2);
   const auto &a = one.metrics, &b = two.metrics;
+  // The iterations on all points, as the visitor heard of them: the fits to
+  // rest; the short fits that compare starts use 160 points.
+  const std::size_t on_all = std::size_t(std::count(points_used.begin(), points_used.end(), pts.size()));
+  BS_CHECK(points_used.size() == a.iterations && on_all == a.iterations_on_all_points && on_all > 0 &&
+             on_all < a.iterations && a.iterations_on_all_points == b.iterations_on_all_points,
+           "iterations on all points: " << a.iterations_on_all_points << " and " << b.iterations_on_all_points
+                                        << " reported, " << on_all << " of " << points_used.size() << " seen");
   BS_CHECK(same_bits(one.model.parameters(), two.model.parameters()),
            "1 and 2 threads: parameters differ: " << std::setprecision(17) << one.model.parameters().transpose()
                                                    << " and " << two.model.parameters().transpose());

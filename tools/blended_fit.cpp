@@ -134,6 +134,7 @@ std::string summary_text(const Result& r, const std::string& input, bool no_spli
   s["points"] = double(r.first_fit.metrics.number_of_points);
   s["parameters"] = double(r.model.number_of_parameters());
   s["iterations"] = double(m.iterations);
+  s["iterations_on_all_points"] = double(m.iterations_on_all_points);
   s["converged"] = m.converged;
   s["relative_rms"] = numbers(m.relative_rms.data(), 3);
   s["rms"] = number(m.rms);

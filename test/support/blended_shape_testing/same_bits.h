@@ -33,9 +33,17 @@ inline bool same_bits(const std::vector<double>& a, const std::vector<double>& b
 // A fitting visitor that records the energy after each iteration in `energies`.
 struct Energy_recorder : Default_fitting_visitor
 {
-  explicit Energy_recorder(std::vector<double>& energies) : energies(&energies) {}
-  void on_iteration(std::size_t, double energy, std::size_t) const { energies->push_back(energy); }
+  explicit Energy_recorder(std::vector<double>& energies, std::vector<std::size_t>* points_used = nullptr)
+    : energies(&energies), points_used(points_used)
+  {}
+  void on_iteration(std::size_t, double energy, std::size_t points) const
+  {
+    energies->push_back(energy);
+    if(points_used != nullptr)
+      points_used->push_back(points);
+  }
   std::vector<double>* energies; // a pointer: fit_superquadric() copies its visitor
+  std::vector<std::size_t>* points_used; // if given, the points each iteration used
 };
 
 } // namespace testing

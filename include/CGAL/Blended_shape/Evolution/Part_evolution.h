@@ -240,7 +240,8 @@ public:
   typedef typename GeomTraits::Point_3 Point_3;       ///< the point type
 
   /// Evolution of `initial` fitted to `points` (copied). The fits use
-  /// `fitting` with least-squares weighting (see the class description).
+  /// `fitting` with least-squares weighting (see the class description), on
+  /// all points at every step (no subset phase).
   /// \throws Input_error if the points are unusable (check_points()).
   /// \throws std::invalid_argument on invalid settings.
   template <class PointRange, class PointMap = CGAL::Identity_property_map<Point_3>>

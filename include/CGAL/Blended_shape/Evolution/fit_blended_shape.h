@@ -179,6 +179,7 @@ auto fit_blended_shape(const PointRange& points, const NamedParameters& np = CGA
   result.status.aborted = first.metrics.aborted; // the model is then the first fit's, as far as it went
   result.status.part_limit_reached = !evolve;
   std::size_t iterations = first.metrics.iterations;
+  std::size_t iterations_on_all_points = first.metrics.iterations_on_all_points;
   if(evolve && !result.status.aborted)
   {
     const internal::Point_normalization<Geom_traits> normalization(points, point_map);
@@ -189,6 +190,7 @@ auto fit_blended_shape(const PointRange& points, const NamedParameters& np = CGA
     result.status = evolution.run(internal::Input_frame_visitor<decltype(visitor), Geom_traits>{visitor, normalization, n},
                                   callback);
     iterations += result.status.iterations;
+    iterations_on_all_points += result.status.iterations; // evolution fits all its points at every step
     for(const Evolution_event& e : evolution.events())
       result.events.push_back(internal::event_in_input_unit(e, normalization.scale(), n));
     if(evolution.model().shape().number_of_components() > 1)
@@ -209,6 +211,7 @@ auto fit_blended_shape(const PointRange& points, const NamedParameters& np = CGA
       // which fits them all, stays.
       const Fit_result<Geom_traits> single = fit_superquadric(points, np);
       iterations += single.metrics.iterations;
+      iterations_on_all_points += single.metrics.iterations_on_all_points;
       result.status.aborted = single.metrics.aborted;
       if(2 * single.stray_points.size() <= single.metrics.number_of_points)
       {
@@ -219,6 +222,7 @@ auto fit_blended_shape(const PointRange& points, const NamedParameters& np = CGA
     }
   }
   result.metrics.iterations = iterations;
+  result.metrics.iterations_on_all_points = iterations_on_all_points;
   result.metrics.aborted = result.status.aborted;
   result.metrics.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return result;

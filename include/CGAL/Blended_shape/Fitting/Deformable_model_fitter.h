@@ -72,6 +72,9 @@ struct Data_force
 struct Fitting_status
 {
   std::size_t iterations = 0; ///< iterations done (accepted or not)
+  /// Of `iterations`, those whose step used all points (the others used a
+  /// subset of them: the subset phase, the short fits that compare starts).
+  std::size_t iterations_on_all_points = 0;
   bool converged = false;  ///< steady state reached on all points
   bool aborted = false;    ///< the callback returned false
   bool timed_out = false;  ///< maximum_running_time reached
@@ -340,6 +343,8 @@ public:
       }
       const Step_report r = step();
       ++status.iterations;
+      if(r.points_used == m_all.size())
+        ++status.iterations_on_all_points;
       ++in_phase;
       visitor.on_iteration(status.iterations, r.energy_after, r.points_used);
       steady = is_at_rest(r) ? steady + 1 : 0;

@@ -30,6 +30,10 @@ struct Fit_metrics
   std::size_t number_of_points = 0;      ///< N, the number of data points
   std::size_t number_of_parameters = 0;  ///< dimension of q
   std::size_t iterations = 0;            ///< iterations of the fit, all phases and starts
+  /// Of `iterations`, those whose step used all points; the others used a
+  /// subset (the subset phase, the short fits that compare starts), and
+  /// cost in proportion to its size.
+  std::size_t iterations_on_all_points = 0;
   /// Eq. 14, read as `RMS_j = sqrt( (1/N) sum_i (dhat_j . (p_i - x(u_i)))^2 ) / |d_j|`
   /// with `d_j` the j-th diameter of the initial best-fit ellipsoid (twice its
   /// j-th semi-axis), largest first, and `dhat_j` its direction;

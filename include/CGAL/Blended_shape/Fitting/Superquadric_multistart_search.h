@@ -250,19 +250,28 @@ public:
 
   /// The iterations of all the short fits so far.
   std::size_t candidate_iterations() const { return m_candidate_iterations; }
+  /// Of candidate_iterations(), those whose steps used all points
+  /// (Fitting_status::iterations_on_all_points).
+  std::size_t candidate_iterations_on_all_points() const { return m_candidate_iterations_on_all_points; }
   /// How the last rough fit ended (default-constructed before the first).
   const Fitting_status& last_candidate_status() const { return m_status; }
   /// Whether the callback aborted a short fit.
   bool aborted() const { return m_status.aborted; }
 
 private:
+  void count_candidate_iterations(const Fitting_status& st)
+  {
+    m_candidate_iterations += st.iterations;
+    m_candidate_iterations_on_all_points += st.iterations_on_all_points;
+  }
+
   // A rough fit of `m` on the rough subset, with its mean squared distance there.
   template <class Visitor>
   Model rough_fit(const Model& m, double& distance, Visitor& visitor, const Callback& callback)
   {
     Fitter candidate(m_points, m, m_rough, m_point_map);
     m_status = candidate.run(visitor, callback, Fitting_phase::Subset);
-    m_candidate_iterations += m_status.iterations;
+    count_candidate_iterations(m_status);
     distance = candidate.mean_squared_distance(false, m_truncation);
     return candidate.model();
   }
@@ -278,7 +287,7 @@ private:
   {
     std::unique_ptr<Fitter> challenger = std::make_unique<Fitter>(m_points, m, m_challenger, m_point_map);
     st = challenger->run(visitor, callback, Fitting_phase::Subset);
-    m_candidate_iterations += st.iterations;
+    count_candidate_iterations(st);
     if(st.aborted)
       return challenger;
     if(!(challenger->mean_squared_distance(false, m_truncation) <
@@ -286,7 +295,7 @@ private:
       return nullptr;
     challenger = std::make_unique<Fitter>(m_points, challenger->model(), m_settings, m_point_map);
     st = challenger->run(visitor, callback);
-    m_candidate_iterations += st.iterations;
+    count_candidate_iterations(st);
     return challenger;
   }
 
@@ -308,6 +317,7 @@ private:
   Fitting_settings m_rough;      // of the rough fits
   Fitting_settings m_challenger; // of the challengers' fits on the subset
   std::size_t m_candidate_iterations = 0;
+  std::size_t m_candidate_iterations_on_all_points = 0;
   double m_truncation = HUGE_VAL; // see set_truncation()
   Fitting_status m_status; // of the last rough fit
 };

@@ -72,6 +72,7 @@ Fit_metrics compute_fit_metrics(Fitter& fitter, const Ellipsoid_fit<GeomTraits>&
   m.number_of_points = forces.size();
   m.number_of_parameters = fitter.model().number_of_parameters();
   m.iterations = status.iterations;
+  m.iterations_on_all_points = status.iterations_on_all_points;
   m.relative_rms = relative_rms(inlier_residuals, initial);
   m.rms = inlier_residuals.empty() ? 0. : std::sqrt(sum / double(inlier_residuals.size()));
   const double diagonal = std::sqrt(CGAL::square(inlier_box.xmax() - inlier_box.xmin()) +
@@ -182,6 +183,7 @@ auto fit_superquadric(const PointRange& points, const NamedParameters& np = CGAL
   if(all_axes)
     fitter = search.search_similar_basins(std::move(fitter), final_status, visitor, callback);
   final_status.iterations += search.candidate_iterations();
+  final_status.iterations_on_all_points += search.candidate_iterations_on_all_points();
   final_status.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 
   std::vector<std::size_t> stray_points;
