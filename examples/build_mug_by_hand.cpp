@@ -126,14 +126,14 @@ int main(int argc, char** argv)
     //    that its own z axis (the pole of its chart 0) points away from the
     //    body, centred at x = 1.35. It is blended gradually into the body
     //    (sec. 4.1): a disk region on the side of the body (chart 0, centred
-    //    on the equator at (1, 0), radii 0.1 along the meridian and 0.2
-    //    around: the handle's footprint in the chart; strip half-width 0.04)
+    //    on the equator at (1, 0), radii 0.3 along the meridian and 0.2
+    //    around: the handle's footprint in the chart; strip half-width 0.06)
     //    corresponds to the inside of the circle of radius 1.45 of the
     //    handle's chart 0 (all of it but the end that lies in the body).
     //    add_part sets h = 1: the handle starts unexpressed.
     // [handle]
     const double c45 = std::sqrt(0.5);
-    mug.add_part(0, 0, Region::make_parameters(1.0, 0., 0.1, 0.2, 0., 1., 1.), 0.04,
+    mug.add_part(0, 0, Region::make_parameters(1.0, 0., 0.3, 0.2, 0., 1., 1.), 0.06,
                  Ellipsoid(0.75, 0.18, 0.55, 1.0, 0.5, 0.6), "superquadric_ellipsoid", Eigen::Vector3d(1.35, 0., 0.),
                  Eigen::Vector4d(c45, 0., c45, 0.), 0, Region::make_parameters(0., 0., 1.45, 1.45, 0., 1., 0.), 0.07);
     // [handle]

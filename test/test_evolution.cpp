@@ -587,7 +587,12 @@ void test_evolution_limits()
 // superquadric to a body with a part (where the split's strip once reached
 // past its chart's rim between the points the region check samples, and the
 // fit stopped with "chart point ... is outside the domain"): it comes to
-// rest, and the part's points pull the mean squared distance down.
+// rest, and the part's points pull the mean squared distance down. (Whether
+// that part then pays for its parameters depends on the rest state reached
+// from this poor start, which differs between the kernels: with
+// Simple_cartesian the base became an octahedron and the part a flat
+// sliver off the data that remove_unpaid_parts() rightly removes. A part
+// that pays is kept in test_structure_equivariance(), through run().)
 template <class K>
 void test_split_model_fits_to_rest()
 {
@@ -649,11 +654,6 @@ void test_split_model_fits_to_rest()
   const double after = on.mean_squared_distance(true);
   BS_CHECK(status.converged && after < before, "the fit of the split model: converged " << status.converged
                                                << ", mean squared distance " << before << " -> " << after);
-  // The part pays for its parameters: it stays.
-  BS::Part_evolution<K> evolution(points, on.model());
-  const std::size_t removed = evolution.remove_unpaid_parts();
-  BS_CHECK(removed == 0 && evolution.model().shape().number_of_components() == 2,
-           "a part that pays for its parameters was removed");
   std::cout << "  split model fitted to rest in " << status.iterations << " iterations, mean squared distance "
             << before << " -> " << after << std::endl;
 }
@@ -767,11 +767,15 @@ std::string structure_of(const BS::Blended_shape<K>& shape)
 // input moved by a similarity (rotation, translation, scale 3.7) gives the
 // same structure (parts, blends, which is added to which). (Not the same
 // RMS: the fits reach rest states that differ with rounding, by several %
-// of the RMS here, as the manual says; the RMS ratio is printed.)
+// of the RMS here, as the manual says; the RMS ratio is printed.) Seed 2,
+// where the split kept lowers the description length by 78 (Simple_cartesian)
+// and 42 (Epick): a decision by so narrow a margin that rounding can flip it
+// cannot be equivariant. With seed 1 the best split's margin is -0.15 with
+// Simple_cartesian (undone) and +22 with Epick (kept), see the manual.
 template <class K>
 void test_structure_equivariance()
 {
-  const auto points = BS::testing::body_with_part_scan<K>(1500, 1);
+  const auto points = BS::testing::body_with_part_scan<K>(1500, 2);
   std::mt19937_64 rng(1);
   const auto np = BS::parameters::maximum_number_of_parts(std::size_t(2));
   const auto a = BS::fit_blended_shape(points, np);
@@ -779,6 +783,9 @@ void test_structure_equivariance()
   BS_CHECK(a.number_of_parts() == 2 && a.model.shape().number_of_blends() == 1 &&
              a.model.shape().blend(0).kind() == BS::Blend_kind::Split,
            "body with a part: " << a.number_of_parts() << " parts, structure " << structure);
+  // The part kept pays for its parameters: run() checked it after the split.
+  for(const auto& e : a.events)
+    BS_CHECK(e.kind != BS::Evolution_event_kind::Remove, "body with a part: the part split off was removed");
   const BS::testing::Similarity T = BS::testing::random_similarity(rng, 3.7, 10.);
   std::vector<typename K::Point_3> moved;
   for(const auto& p : points)

@@ -261,7 +261,7 @@ void test_same_bits_at_any_number_of_threads(std::mt19937_64& rng)
   const auto one = fit(1), two = fit(2);
   const auto &a = one.metrics, &b = two.metrics;
   // The iterations on all points, as the visitor heard of them: the fits to
-  // rest; the short fits that compare starts use 160 points.
+  // rest; the short fits that compare starts use 250 points.
   const std::size_t on_all = std::size_t(std::count(points_used.begin(), points_used.end(), pts.size()));
   BS_CHECK(points_used.size() == a.iterations && on_all == a.iterations_on_all_points && on_all > 0 &&
              on_all < a.iterations && a.iterations_on_all_points == b.iterations_on_all_points,

@@ -18,6 +18,7 @@
 #include <CGAL/boost/graph/helpers.h>
 #include <CGAL/Polygon_mesh_processing/border.h>
 
+#include <algorithm>
 #include <random>
 #include <sstream>
 #include <typeinfo>
@@ -585,6 +586,66 @@ void test_initialization(std::mt19937_64& rng)
   BS_CHECK(ft.axes == fp.axes && ft.rotation == fp.rotation, "point_map");
 }
 
+// The ellipsoid's map is the radial projection of the chart's direction onto
+// the superquadric: every point is on the implicit surface (also for the
+// lowest exponents), e1 = e2 = 1 gives the classic map, and the faces of a
+// near-cube take chart regions of comparable size (the classic map squeezes
+// the sides into a band of width ~1e-3 at the equator).
+template <class K>
+void test_radial_projection(std::mt19937_64& rng)
+{
+  std::uniform_real_distribution<double> size(0.3, 3.), expo(0.01, 2.), coord(-1.2, 1.2);
+  double worst = 0.;
+  for(int t = 0; t < 2000; ++t)
+  {
+    const BS::Superquadric_ellipsoid<K> ell(size(rng), size(rng), size(rng), t % 10 == 0 ? 0.01 : expo(rng),
+                                            t % 7 == 0 ? 0.01 : expo(rng));
+    const BS::Chart_point u(std::size_t(t % 2), coord(rng), coord(rng));
+    if(std::hypot(u.x, u.y) > 1.2)
+      continue;
+    const auto q = ell.parameters();
+    const auto s = ell.point(u);
+    const double e1 = q[3], e2 = q[4];
+    const double X = std::abs(s.x() / q[0]), Y = std::abs(s.y() / q[1]), Z = std::abs(s.z() / q[2]);
+    // H(s / a) - 1, scaled as in the map (largest coordinate 1) so that no power underflows
+    const double m = (std::max)({X, Y, Z});
+    const double H = std::pow(std::pow(X / m, 2. / e2) + std::pow(Y / m, 2. / e2), e2 / e1) + std::pow(Z / m, 2. / e1);
+    const double h = std::pow(H, -0.5 * e1) / m; // 1 on the surface
+    worst = (std::max)(worst, std::abs(h - 1.));
+    // the point is along the chart's direction
+    const Eigen::Vector3d d = ell.direction(u), x(s.x() / q[0], s.y() / q[1], s.z() / q[2]);
+    BS_CHECK(d.cross(x).norm() <= 1e-12 * x.norm() && d.dot(x) > 0., "point not along the direction at " << u.x << ", " << u.y);
+  }
+  BS_CHECK(worst < 1e-12, "radial projection: points off the implicit surface by " << worst);
+
+  const BS::Superquadric_ellipsoid<K> ellipsoid(1.3, 0.7, 2.1, 1., 1.);
+  for(double r : {0., 0.3, 0.8, 1., 1.15})
+    for(std::size_t c = 0; c < 2; ++c)
+    {
+      const BS::Chart_point u(c, r * std::cos(1.1), r * std::sin(1.1));
+      const auto a = ellipsoid.angles(u);
+      const auto s = ellipsoid.point(u);
+      const Eigen::Vector3d classic(1.3 * a.cos_eta * a.cos_omega, 0.7 * a.cos_eta * a.sin_omega, 2.1 * a.sin_eta);
+      BS_CHECK((Eigen::Vector3d(s.x(), s.y(), s.z()) - classic).norm() < 1e-15, "e = 1: not the classic map");
+    }
+
+  // A near-cube: chart radius 0.4 lies on the top face, 0.7 on the side
+  // (its rim is at 0.5 to 0.61); the chart Jacobian at the pole is finite, of rank 2.
+  const BS::Superquadric_ellipsoid<K> cube(1., 1., 1., 0.1, 0.1);
+  for(double w : {0., 0.5, 1.})
+  {
+    const auto top = cube.point(BS::Chart_point(0, 0.4 * std::cos(w), 0.4 * std::sin(w)));
+    const auto side = cube.point(BS::Chart_point(0, 0.7 * std::cos(w), 0.7 * std::sin(w)));
+    BS_CHECK(top.z() > 0.99 && top.z() < 1.001 && (std::max)(std::abs(top.x()), std::abs(top.y())) < 0.95,
+             "near-cube, chart radius 0.4: " << top);
+    BS_CHECK((std::max)(std::abs(side.x()), std::abs(side.y())) > 0.99 && side.z() < 0.95,
+             "near-cube, chart radius 0.7: " << side);
+  }
+  typename BS::Superquadric_ellipsoid<K>::Chart_jacobian D;
+  BS::Superquadric_ellipsoid<K>(1., 2., 0.5, 0.3, 0.3).point_and_chart_jacobian(BS::Chart_point(0, 0., 0.), D);
+  BS_CHECK(D.allFinite() && D.col(0).cross(D.col(1)).norm() > 0.1, "pole of a flat-topped ellipsoid:\n" << D);
+}
+
 template <class K>
 void test_bad_parameters()
 {
@@ -609,6 +670,7 @@ void run_all(const char* kernel)
   test_chart_meshes<K>();
   test_initialization<K>(rng);
   test_bad_parameters<K>();
+  test_radial_projection<K>(rng);
   std::cout << "primitives with " << kernel
             << (blended_shape_test::failures() == before ? ": SUCCESS" : ": FAILED") << std::endl;
 }

@@ -234,6 +234,8 @@ public:
   // One iteration: true if it brought the point closer.
   bool iterate()
   {
+    if(++m_iterations > newton_after && newton_step())
+      return true;
     const State before = state();
     bool converged, left_surface;
     const bool improved = step_from(u, J, converged, left_surface);
@@ -333,6 +335,60 @@ private:
       return false;
   }
 
+  // Away from the surface Gauss-Newton converges linearly, at the rate
+  // distance x curvature, which nears 1 next to a focal point (a point
+  // inside a concave region at about its radius of curvature, as in the
+  // strips of blends and holes): there hundreds of steps may be needed. A
+  // point still moving after newton_after Gauss-Newton steps takes Newton
+  // steps instead: the Hessian of |p - x(u)|^2 / 2 is J^T J - sum_i r_i
+  // d^2 x_i / du^2, the second derivatives by forward differences of the
+  // chart Jacobian (two more evaluations per step). Where that Hessian is not
+  // positive definite, or the step does not bring the point closer (also
+  // halved once), Gauss-Newton steps on. After 8 steps, not 4: with 4,
+  // the Newton steps of points that would have converged anyway took 20 %
+  // of a 200-point fit of one superquadric (with 8, 5 %); the 12 steps left
+  // of the default 20 are plenty where Newton converges quadratically.
+  static constexpr int newton_after = 8;
+
+  bool newton_step()
+  {
+    const double h = 1e-6;
+    Chart_jacobian dJ[2];
+    for(int k = 0; k < 2; ++k)
+    {
+      const Chart_point w(u.chart, u.x + (k == 0 ? h : 0.), u.y + (k == 1 ? h : 0.));
+      Chart_point v;
+      // the same chart: a canonical point elsewhere has other coordinates
+      if(!m_model.canonical_surface_point(w, v) || v.chart != w.chart || v.x != w.x || v.y != w.y)
+        return false;
+      eval(v, m_Jv);
+      dJ[k] = (m_Jv - J) / h;
+    }
+    const Eigen::Vector3d r = m_p - x;
+    Eigen::Matrix2d H = J.transpose() * J;
+    for(int a = 0; a < 2; ++a)
+      for(int b = 0; b < 2; ++b)
+        H(a, b) -= 0.5 * (r.dot(dJ[b].col(a)) + r.dot(dJ[a].col(b)));
+    const double det = H.determinant();
+    if(!(H(0, 0) > 0. && det > 1e-12 * CGAL::square(H.trace())))
+      return false;
+    Eigen::Vector2d step = H.inverse() * (J.transpose() * r);
+    for(int half = 0; half < 2; ++half, step *= 0.5)
+    {
+      Chart_point v;
+      if(!m_model.canonical_surface_point(Chart_point(u.chart, u.x + step[0], u.y + step[1]), v))
+        continue;
+      const Eigen::Vector3d xv = eval(v, m_Jv);
+      const double dv = (m_p - xv).squaredNorm();
+      if(dv < d2)
+      {
+        u = v; x = xv; d2 = dv; J = m_Jv;
+        return true;
+      }
+    }
+    return false;
+  }
+
   // A step toward the discarded edge of a blend's strip (or disk): the
   // surface goes on in the added component's chart, so a step is also taken
   // from the same point (`before`) expressed there, with a chart Jacobian by
@@ -393,6 +449,7 @@ private:
   Eigen::Vector3d x;
   double d2 = 0.;
   Chart_jacobian J, m_Jv;
+  int m_iterations = 0;
 };
 
 /// refine_closest_point(), also returning the model point and the squared

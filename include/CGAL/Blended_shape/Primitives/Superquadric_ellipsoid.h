@@ -4,8 +4,8 @@
 
 #include <CGAL/Blended_shape/Primitives/Chart_domain.h>
 #include <CGAL/Blended_shape/internal/Parameter_table.h>
-#include <CGAL/Blended_shape/Primitives/internal/signed_power.h>
 #include <CGAL/Blended_shape/Primitives/internal/superquadric_parameters.h>
+#include <CGAL/Blended_shape/Primitives/internal/superquadric_radial_projection.h>
 
 #include <Eigen/Core>
 
@@ -21,15 +21,36 @@ namespace Blended_shapes {
 /*!
 \ingroup PkgBlendedShapePrimitives
 
-A superquadric ellipsoid (paper eq. 31 with superquadric exponents):
+A superquadric ellipsoid: the surface of paper eq. 31 with superquadric
+exponents,
+
+    ( (|x/a1|^(2/e2) + |y/a2|^(2/e2))^(e2/e1) + |z/a3|^(2/e1) = 1 ),
+
+the surface the classic map
 
     s(eta, omega) = ( a1 C(eta, e1) C(omega, e2),
                       a2 C(eta, e1) S(omega, e2),
                       a3 S(eta, e1) )
 
-with the signed powers `C(t, e) = sign(cos t) |cos t|^e` and
-`S(t, e) = sign(sin t) |sin t|^e`, over two disk charts without singularity
-(sec. 5.3, App. B.1):
+covers (`C(t, e) = sign(cos t) |cos t|^e`, `S(t, e) = sign(sin t) |sin t|^e`).
+Its points are parameterized differently: a chart point gives the unit
+direction `v = (cos eta cos omega, cos eta sin omega, sin eta)`, and the
+surface point is `s = a (r v)` (componentwise, `a = (a1, a2, a3)`), where
+`r v` is the radial projection of `v` onto the unit superquadric (`a = 1`):
+`r = H(v)^(-e1/2)` with `H` the left-hand side above at `a = 1`
+(internal::Superquadric_radial_projection). For `e1 = e2 = 1` this is the
+classic map; for other exponents it is the same surface with its points
+spread evenly. The classic map squeezes the sides of a box-like
+superquadric into a thin band of latitudes: with `e1 = 0.1`, half of each
+side lies within `1e-3` radians of the equator, and the top face within as
+little of the pole, so that chart regions (the blending regions of sec. 3.3)
+cannot follow a face's rim, foot points creep along the crease, and the chart
+Jacobian is infinite at the pole and near the equator. The radial projection
+maps a cube's faces to chart regions of comparable size (the top face to
+`rho < 0.5` to `0.61`), and its chart Jacobian is finite and of rank 2
+everywhere, the pole included.
+
+The charts, without singularity (sec. 5.3, App. B.1):
 
 - chart 0 (upper half): chart point `(x, y)`, `rho = |(x, y)|`,
   latitude `eta = (pi/2)(1 - rho)`, longitude `omega = atan2(y, x)`;
@@ -37,14 +58,14 @@ with the signed powers `C(t, e) = sign(cos t) |cos t|^e` and
 
 Both charts are disks of radius `1 + margin`: each reaches `margin * 90` degrees
 of latitude past the equator, so they overlap in a band around it. The pole is
-the chart centre, where the azimuthal map is smooth (for `e1 = 1`). Both
+the chart centre, where the map is smooth. Both
 charts are oriented so that counterclockwise chart triangles give the outward
 normal. The two charts share one parameter vector (the seam is geometrically
 exact), and the identification of their points is explicit: to_chart() and
 canonical_chart_point().
 
-Parameters: `(a1, a2, a3, e1, e2)`; `ai > 0` and `ei` in [0.01, 2] (the
-closed-form normal needs `e <= 2`). The parameter queries, `parameters()`
+Parameters: `(a1, a2, a3, e1, e2)`; `ai > 0` and `ei` in [0.01, 2] (past 2
+the surface has cusps, where the normal and the chart Jacobian are undefined). The parameter queries, `parameters()`
 and `set_parameters()` are those of the concept, with these names and bounds.
 
 \tparam GeomTraits a CGAL kernel whose `FT` is `double`.
@@ -176,105 +197,89 @@ public:
   /// \name Evaluation
   /// @{
 
-  /// The surface point at `p`.
-  Point_3 point(const Chart_point& p) const
+  /// The unit direction of `p`: `(cos eta cos omega, cos eta sin omega, sin eta)`.
+  Eigen::Vector3d direction(const Chart_point& p) const
   {
     const Angles a = angles(p);
-    const double ce = internal::signed_pow(a.cos_eta, m_q[E1]);
-    return Point_3(m_q[A1] * ce * internal::signed_pow(a.cos_omega, m_q[E2]),
-                   m_q[A2] * ce * internal::signed_pow(a.sin_omega, m_q[E2]),
-                   m_q[A3] * internal::signed_pow(a.sin_eta, m_q[E1]));
+    return Eigen::Vector3d(a.cos_eta * a.cos_omega, a.cos_eta * a.sin_omega, a.sin_eta);
   }
 
+  /// The surface point at `p`.
+  Point_3 point(const Chart_point& p) const { return surface_point(projection(p)); }
+
   /// The parameter Jacobian ds/dq (3 x 5) at `p`, and the point itself.
+  /// With `s = a (r u)` (componentwise), `ds/da_i = (r u)_i` and
+  /// `ds/de_j = s d(ln r)/de_j`.
   Point_3 point_and_jacobian(const Chart_point& p, Jacobian& J) const
   {
-    const Angles a = angles(p);
-    const internal::Signed_power ce(a.cos_eta, m_q[E1]), se(a.sin_eta, m_q[E1]);
-    const internal::Signed_power cw(a.cos_omega, m_q[E2]), sw(a.sin_omega, m_q[E2]);
-    const double a1 = m_q[A1], a2 = m_q[A2], a3 = m_q[A3];
+    const internal::Superquadric_radial_projection rp = projection(p);
+    const Eigen::Vector3d unit = rp.point();
     J.setZero();
-    J(0, A1) = ce.value * cw.value;
-    J(1, A2) = ce.value * sw.value;
-    J(2, A3) = se.value;
-    J(0, E1) = a1 * ce.d_exponent * cw.value;
-    J(1, E1) = a2 * ce.d_exponent * sw.value;
-    J(2, E1) = a3 * se.d_exponent;
-    J(0, E2) = a1 * ce.value * cw.d_exponent;
-    J(1, E2) = a2 * ce.value * sw.d_exponent;
-    return Point_3(a1 * J(0, A1), a2 * J(1, A2), a3 * J(2, A3));
+    J(0, A1) = unit.x();
+    J(1, A2) = unit.y();
+    J(2, A3) = unit.z();
+    const double d1 = rp.d_log_radius_d_e1(), d2 = rp.d_log_radius_d_e2();
+    for(int i = 0; i < 3; ++i)
+    {
+      const double si = m_q[A1 + i] * unit[i];
+      J(i, E1) = si * d1;
+      J(i, E2) = si * d2;
+    }
+    return surface_point(rp);
   }
 
   /// The parameter Jacobian ds/dq at `p`.
   void jacobian(const Chart_point& p, Jacobian& J) const { point_and_jacobian(p, J); }
 
   /// The surface point at `p` (the same as point()), and the chart Jacobian
-  /// `D = [ds/dx, ds/dy]` there, analytic. Within 1e-6 of a zero of a cosine
-  /// or sine that a signed power is applied to, the power's derivative is
-  /// taken at 1e-6 (internal::signed_power_derivative_floor: a finite cap for
-  /// an exponent below 1, a small non-zero slope above 1), so `D` is always
-  /// finite. At the pole (`rho = 0`), where the map is differentiable only for
-  /// `e1 > 1` or `e1 = e2 = 1`, the columns are the partial derivatives along
-  /// the chart axes (`+x` and `+y`), with that same floor.
+  /// `D = [ds/dx, ds/dy]` there, analytic: the scale `a` times the derivative
+  /// of the radial projection times that of the direction. It is finite and of
+  /// rank 2 everywhere, the pole included, for every exponent in bounds (the
+  /// radial projection's derivative only loses continuity on the creases of
+  /// exponent 2).
   Point_3 point_and_chart_jacobian(const Chart_point& p, Chart_jacobian& D) const
   {
     const double h = 0.5 * M_PI; // d eta / d rho, up to sign
     const double sigma = (p.chart == 0) ? 1. : -1.; // chart 1 mirrors y and the latitude
-    const Angles a = angles(p);
     const double rho = std::hypot(p.x, p.y);
-    const double e1 = m_q[E1], e2 = m_q[E2], a1 = m_q[A1], a2 = m_q[A2], a3 = m_q[A3];
-    double dA, dB, dC, dT;
-    const double A = internal::signed_pow_and_derivative(a.cos_eta, e1, dA);
-    const double B = internal::signed_pow_and_derivative(a.cos_omega, e2, dB);
-    const double C = internal::signed_pow_and_derivative(a.sin_omega, e2, dC);
-    const double T = internal::signed_pow_and_derivative(a.sin_eta, e1, dT);
-    // g = A / rho, the factor of the longitude terms, from the smooth ratio
-    // sin(pi rho / 2) / rho (pi/2 at the pole) so that it stays finite at
-    // the pole: A / rho = |cos eta|^(e1 - 1) (cos eta / rho).
-    const double g = (dA / e1) * (rho > 0. ? a.cos_eta / rho : h);
-    if(rho == 0.)
-    {
-      // Partial derivatives along +x (longitude 0) and +y: the latitude
-      // terms vanish (d sin(eta)/d rho = 0 at the pole) and the longitude
-      // is constant along each axis.
-      D << a1 * g, 0.,
-           0., sigma * a2 * g,
-           0., 0.;
-    }
-    else
-    {
-      // rho, omega as functions of (x, y): d rho = (ux, uy), d omega = sigma (-uy, ux) / rho,
-      // with (ux, uy) = (x, y) / rho; cos omega = ux, sin omega = sigma uy.
-      const double ux = a.cos_omega, uy = sigma * a.sin_omega;
-      // d cos(eta) / d rho = (pi/2) cos(pi rho / 2), d sin(eta) / d rho = -sigma (pi/2) sin(pi rho / 2)
-      const double dA_drho = dA * h * a.sin_eta * sigma;
-      const double dT_drho = -sigma * dT * h * a.cos_eta;
-      D(0, 0) = a1 * (dA_drho * ux * B + g * dB * uy * uy);
-      D(0, 1) = a1 * (dA_drho * uy * B - g * dB * ux * uy);
-      D(1, 0) = a2 * (dA_drho * ux * C - sigma * g * dC * ux * uy);
-      D(1, 1) = a2 * (dA_drho * uy * C + sigma * g * dC * ux * ux);
-      D(2, 0) = a3 * dT_drho * ux;
-      D(2, 1) = a3 * dT_drho * uy;
-    }
-    return Point_3(a1 * A * B, a2 * A * C, a3 * T); // rounded as in point()
+    // The direction is (g x, sigma g y, sigma cos(h rho)) with g = sin(h rho) / rho;
+    // k = g'(rho) / rho, from its series near the pole (no cancellation).
+    const double t = h * rho;
+    const double g = (rho > 0.) ? std::sin(t) / rho : h;
+    const double k = (rho < 1e-2) ? h * h * h * (-1. / 3. + t * t / 30.)
+                                  : (t * std::cos(t) - std::sin(t)) / (rho * rho * rho);
+    Eigen::Matrix<double, 3, 2> dv;
+    dv << g + k * p.x * p.x, k * p.x * p.y,
+          sigma * k * p.x * p.y, sigma * (g + k * p.y * p.y),
+          -sigma * h * g * p.x, -sigma * h * g * p.y;
+    const internal::Superquadric_radial_projection rp = projection(p);
+    const Eigen::Vector3d a(m_q[A1], m_q[A2], m_q[A3]);
+    D = a.asDiagonal() * (rp.derivative() * dv);
+    return surface_point(rp);
   }
 
-  /// Unit outward normal, from the closed form of the superquadric's
-  /// implicit gradient (defined at the poles too, for any exponent in bounds).
+  /// Unit outward normal: the gradient of the implicit function
+  /// `H(x/a1, y/a2, z/a3)` (defined at the poles too, for any exponent in bounds).
   Vector_3 normal(const Chart_point& p) const
   {
-    const Angles a = angles(p);
-    const double k1 = 2. - m_q[E1], k2 = 2. - m_q[E2];
-    const double ce = internal::signed_pow(a.cos_eta, k1);
-    const double nx = ce * internal::signed_pow(a.cos_omega, k2) / m_q[A1];
-    const double ny = ce * internal::signed_pow(a.sin_omega, k2) / m_q[A2];
-    const double nz = internal::signed_pow(a.sin_eta, k1) / m_q[A3];
-    const double len = std::sqrt(nx * nx + ny * ny + nz * nz);
-    return Vector_3(nx / len, ny / len, nz / len);
+    const Eigen::Vector3d G = projection(p).gradient();
+    const Eigen::Vector3d n = Eigen::Vector3d(G.x() / m_q[A1], G.y() / m_q[A2], G.z() / m_q[A3]).normalized();
+    return Vector_3(n.x(), n.y(), n.z());
   }
   /// @}
 
 private:
+  internal::Superquadric_radial_projection projection(const Chart_point& p) const
+  {
+    return internal::Superquadric_radial_projection(direction(p), m_q[E1], m_q[E2]);
+  }
+
+  Point_3 surface_point(const internal::Superquadric_radial_projection& rp) const
+  {
+    const Eigen::Vector3d unit = rp.point();
+    return Point_3(m_q[A1] * unit.x(), m_q[A2] * unit.y(), m_q[A3] * unit.z());
+  }
+
   double m_margin;
 };
 
