@@ -646,6 +646,42 @@ void test_radial_projection(std::mt19937_64& rng)
   BS_CHECK(D.allFinite() && D.col(0).cross(D.col(1)).norm() > 0.1, "pole of a flat-topped ellipsoid:\n" << D);
 }
 
+// The radial projection's gradient G (of H over 2/e1) takes its factors as
+// quotients of the powers already taken, and the powers themselves where a
+// quotient could overflow (w < 1e-100) or a power is subnormal: each way
+// against a long double evaluation of G's formula, and Euler's u . G = H.
+void test_radial_projection_gradient()
+{
+  struct Case
+  {
+    Eigen::Vector3d v;
+    double e1, e2;
+    const char* what;
+  };
+  const Case cases[] = {{Eigen::Vector3d(0.3, -0.7, 1.), 0.7, 1.4, "quotients"},
+                        {Eigen::Vector3d(-0.9, 0.4, 0.2), 1.8, 0.05, "quotients, x largest"},
+                        {Eigen::Vector3d(1e-60, -2e-60, 1.), 1.5, 1., "w < 1e-100"},
+                        {Eigen::Vector3d(1e-16, 0.5, 1.), 1., 0.1, "subnormal |ux|^(2/e2)"},
+                        {Eigen::Vector3d(1., 0.2, -1e-16), 0.1, 0.8, "subnormal |uz|^(2/e1)"}};
+  for(const Case& c : cases)
+  {
+    const BS::internal::Superquadric_radial_projection rp(c.v, c.e1, c.e2);
+    const Eigen::Vector3d G = rp.gradient();
+    typedef long double L;
+    const L ux = std::abs(L(rp.u.x())), uy = std::abs(L(rp.u.y())), uz = std::abs(L(rp.u.z()));
+    const L w = std::pow(ux, L(2) / c.e2) + std::pow(uy, L(2) / c.e2);
+    const auto gxy = [&](L a) { return std::exp((L(c.e2) / c.e1 - 1) * std::log(w) + (L(2) / c.e2 - 1) * std::log(a)); };
+    const L reference[3] = {gxy(ux), gxy(uy), std::pow(uz, L(2) / c.e1 - 1)};
+    for(int i = 0; i < 3; ++i)
+    {
+      const L error = std::abs(std::abs(L(G[i])) - reference[i]);
+      BS_CHECK(std::isfinite(G[i]) && error <= 1e-12L * reference[i] && std::signbit(G[i]) == std::signbit(rp.u[i]),
+               c.what << ": gradient component " << i << " is " << G[i] << ", its formula gives " << double(reference[i]));
+    }
+    BS_CHECK(std::abs(rp.u.dot(G) - rp.H) <= 1e-13 * rp.H, c.what << ": u . G = " << rp.u.dot(G) << ", H = " << rp.H);
+  }
+}
+
 template <class K>
 void test_bad_parameters()
 {
@@ -681,6 +717,7 @@ int main()
 {
   std::mt19937_64 rng(5);
   test_quaternion(rng);
+  test_radial_projection_gradient();
 #ifndef BLENDED_SHAPE_ONE_KERNEL // sanitizer builds: Epick only (see test/CMakeLists.txt)
   run_all<CGAL::Simple_cartesian<double>>("Simple_cartesian<double>");
 #endif
