@@ -218,7 +218,8 @@ public:
     J(0, A1) = unit.x();
     J(1, A2) = unit.y();
     J(2, A3) = unit.z();
-    const double d1 = rp.d_log_radius_d_e1(), d2 = rp.d_log_radius_d_e2();
+    double d1, d2;
+    rp.d_log_radius_d_exponents(d1, d2);
     for(int i = 0; i < 3; ++i)
     {
       const double si = m_q[A1 + i] * unit[i];

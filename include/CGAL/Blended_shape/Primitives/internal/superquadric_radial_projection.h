@@ -24,9 +24,8 @@ namespace internal {
 // G below is the gradient of H over 2/e1:
 //   Gx = w^(e2/e1 - 1) |ux|^(2/e2 - 1) sign(ux),   (w = |ux|^(2/e2) + |uy|^(2/e2))
 //   Gz = |uz|^(2/e1 - 1) sign(uz),
-// finite for exponents up to 2 (each Gx is computed from the sum of the
-// logarithms of its factors, which is never positive for e1 <= 2: see gx()),
-// and u . G = H (Euler's relation), which keeps H > 0 and G != 0.
+// finite for exponents up to 2 (see gradient() and gxy() for how each factor
+// is taken), and u . G = H (Euler's relation), which keeps H > 0 and G != 0.
 struct Superquadric_radial_projection
 {
   Eigen::Vector3d u;        // the direction, scaled: largest |component| is 1
@@ -78,31 +77,31 @@ struct Superquadric_radial_projection
     return (scale * r) * (Eigen::Matrix3d::Identity() - u * (gradient().transpose() / H));
   }
 
-  // d(ln r)/d e1 = -(1/2) ln H - (e1 / 2H) dH/de1,
-  //   dH/de1 = -(e2/e1^2) P ln w - (2/e1^2) Z ln|uz|.
-  double d_log_radius_d_e1() const
+  // The derivatives of ln r with respect to the exponents, which share ln w
+  // (taken once: the parameter Jacobian of every point in every sweep):
+  //   d(ln r)/d e1 = -(1/2) ln H - (e1 / 2H) dH/de1,
+  //     dH/de1 = -(e2/e1^2) P ln w - (2/e1^2) Z ln|uz|;
+  //   d(ln r)/d e2 = -(e1 / 2H) dP/de2,
+  //     dP/de2 = (P/e1) (ln w - (2/e2) (X ln|ux| + Y ln|uy|) / w).
+  void d_log_radius_d_exponents(double& d_e1, double& d_e2) const
   {
+    const double log_w = (P > 0.) ? std::log(w) : 0.;
     double dH = 0.;
     if(P > 0.)
-      dH -= (e2 / (e1 * e1)) * P * std::log(w);
+      dH -= (e2 / (e1 * e1)) * P * log_w;
     if(Z > 0.)
       dH -= (2. / (e1 * e1)) * Z * std::log(std::abs(u.z()));
-    return -0.5 * std::log(H) - (0.5 * e1 / H) * dH;
-  }
-
-  // d(ln r)/d e2 = -(e1 / 2H) dP/de2,
-  //   dP/de2 = (P/e1) (ln w - (2/e2) (X ln|ux| + Y ln|uy|) / w).
-  double d_log_radius_d_e2() const
-  {
+    d_e1 = -0.5 * std::log(H) - (0.5 * e1 / H) * dH;
+    d_e2 = 0.;
     if(!(P > 0.))
-      return 0.;
+      return;
     double s = 0.;
     if(X > 0.)
       s += X * std::log(std::abs(u.x()));
     if(Y > 0.)
       s += Y * std::log(std::abs(u.y()));
-    const double dP = (P / e1) * (std::log(w) - (2. / e2) * s / w);
-    return -(0.5 * e1 / H) * dP;
+    const double dP = (P / e1) * (log_w - (2. / e2) * s / w);
+    d_e2 = -(0.5 * e1 / H) * dP;
   }
 
 private:
