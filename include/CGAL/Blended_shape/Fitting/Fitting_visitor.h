@@ -3,6 +3,7 @@
 #define CGAL_BLENDED_SHAPE_FITTING_FITTING_VISITOR_H
 
 #include <cstddef>
+#include <vector>
 
 namespace CGAL {
 namespace Blended_shapes {
@@ -45,6 +46,43 @@ struct Default_fitting_visitor
   /// in use, or the Cauchy loss in place of the squares with robust weighting).
   void on_iteration(std::size_t /*iteration*/, double /*energy*/, std::size_t /*points_used*/) {}
 };
+
+namespace internal {
+
+// A fitting visitor that records what it hears, to pass it on later
+// (replay()): fits that run concurrently record, and their visitor then
+// hears of them one fit after the other, in a fixed order.
+class Recorded_fitting_visitor
+{
+public:
+  void on_phase(Fitting_phase phase, std::size_t iteration) { m_heard.push_back({true, phase, iteration, 0., 0}); }
+  void on_iteration(std::size_t iteration, double energy, std::size_t points_used)
+  {
+    m_heard.push_back({false, Fitting_phase::Rigid, iteration, energy, points_used});
+  }
+  template <class Visitor>
+  void replay(Visitor& visitor) const
+  {
+    for(const Heard& h : m_heard)
+      if(h.is_phase)
+        visitor.on_phase(h.phase, h.iteration);
+      else
+        visitor.on_iteration(h.iteration, h.energy, h.points_used);
+  }
+
+private:
+  struct Heard
+  {
+    bool is_phase;
+    Fitting_phase phase;
+    std::size_t iteration;
+    double energy;
+    std::size_t points_used;
+  };
+  std::vector<Heard> m_heard;
+};
+
+} // namespace internal
 
 } // namespace Blended_shapes
 } // namespace CGAL

@@ -7,6 +7,7 @@
 #include <CGAL/Blended_shape/Fitting/Fitting_settings.h>
 #include <CGAL/Blended_shape/Fitting/Fitting_visitor.h>
 #include <CGAL/Blended_shape/Fitting/initialize_from_moments.h>
+#include <CGAL/Blended_shape/Fitting/internal/Point_blocks.h>
 #include <CGAL/Blended_shape/Primitives/Superquadric_ellipsoid.h>
 #include <CGAL/Blended_shape/internal/quaternion.h>
 
@@ -17,9 +18,11 @@
 #include <cmath>
 #include <functional>
 #include <memory>
+#include <mutex>
 #include <optional>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 namespace CGAL {
 namespace Blended_shapes {
@@ -160,8 +163,18 @@ points), one of 20 seeded clouds of the peer protocol over twice the box
 ended among the strays (its true points' RMS 3.6 % of the diagonal, the
 noise 0.2 %; 15 iterations instead of 10 did not help), none with
 250 or 400 points; 400 points made the fit of 2000 points 1.9 times slower
-than 160, 250 points 1.3 times. Every short fit calls the visitor and the
-callback as a full fit does, and counts in candidate_iterations().
+than 160, 250 points 1.3 times. Every short fit counts in
+candidate_iterations().
+
+Threads: the short fits of a group (the three axes; the five similar
+superquadrics of one fit) do not depend on each other, and run
+concurrently on `Fitting_settings::number_of_threads` threads (with TBB);
+each is then compared as before, in a fixed order, so the result is the
+same bits at any number of threads. The visitor hears of every short fit
+as of a full fit, but after its group, fit after fit in that fixed order
+(the same hooks in the same order at any number of threads). The callback
+is called while the fits run, one call at a time (under a lock); once it
+has returned false it is not called again and every fit of the group stops.
 
 \tparam GeomTraits the kernel of the points
 \tparam PointRange the range of the points, kept by reference: it must outlive the search
@@ -177,7 +190,8 @@ public:
 
   /// A search for fits of `points` with the settings `settings` of the full fit.
   Superquadric_multistart_search(const PointRange& points, PointMap point_map, const Fitting_settings& settings)
-    : m_points(points), m_point_map(point_map), m_settings(settings), m_rough(settings), m_challenger(settings)
+    : m_points(points), m_point_map(point_map), m_settings(settings), m_rough(settings), m_challenger(settings),
+      m_tasks(settings.number_of_threads)
   {
     m_rough.subset_size = (std::max<std::size_t>)(settings.subset_size / 16, 100);
     m_rough.energy_tolerance = (std::max)(settings.energy_tolerance, 1e-4);
@@ -199,27 +213,22 @@ public:
     Model start = make_initial_model(initial, 2);
     set_truncation(start);
     double best_distance = HUGE_VAL;
-    auto consider = [&](const Model& m) {
-      double d;
-      const Model fitted = rough_fit(m, d, visitor, callback);
-      if(d < best_distance) // strict: ties keep the earlier candidate, deterministically
-      {
-        best_distance = d;
-        start = fitted;
-      }
+    auto consider = [&](const std::vector<Model>& starts) {
+      for(const Rough_fit& f : rough_fits(starts, visitor, callback))
+        if(f.distance < best_distance) // strict: ties keep the earlier candidate, deterministically
+        {
+          best_distance = f.distance;
+          start = f.model;
+        }
     };
-    for(int z_axis = 0; z_axis < 3 && !m_status.aborted; ++z_axis)
-      consider(make_initial_model(initial, z_axis));
+    consider({make_initial_model(initial, 0), make_initial_model(initial, 1), make_initial_model(initial, 2)});
+    if(m_status.aborted)
+      return start;
     const Model winner = start;
-    bool winner_stays = true;
-    for(int swap = 0; swap < number_of_similar_superquadrics && !m_status.aborted; ++swap)
-    {
-      const double before = best_distance;
-      consider(similar_superquadric(winner, swap));
-      winner_stays = winner_stays && best_distance == before;
-    }
+    const double winner_distance = best_distance;
+    consider(similar_superquadrics(winner));
     // The similar superquadrics of the start were all compared with it (see search_similar_basins()).
-    if(winner_stays && !m_status.aborted)
+    if(best_distance == winner_distance && !m_status.aborted)
       m_compared_basin = winner;
     return start;
   }
@@ -245,16 +254,14 @@ public:
         reference = probe.mean_squared_distance(false, m_truncation);
       }
       std::unique_ptr<Fitter> better;
-      for(int swap = 0; swap < number_of_similar_superquadrics && !m_status.aborted; ++swap)
+      for(const Rough_fit& f : rough_fits(similar_superquadrics(fitted), visitor, callback))
       {
-        double d;
-        const Model m = rough_fit(similar_superquadric(fitted, swap), d, visitor, callback);
         // Clearly closer: a rough fit of the subset alone beats the full
         // fit there by a little even in the same basin.
-        if(m_status.aborted || !(d < 0.8 * reference))
+        if(m_status.aborted || !(f.distance < 0.8 * reference))
           continue;
         Fitting_status st;
-        std::unique_ptr<Fitter> challenger = fit_challenger(m, better ? *better : *fitter, st, visitor, callback);
+        std::unique_ptr<Fitter> challenger = fit_challenger(f.model, better ? *better : *fitter, st, visitor, callback);
         if(!challenger)
           continue;
         if(st.aborted)
@@ -295,15 +302,56 @@ private:
     m_candidate_iterations_on_all_points += st.iterations_on_all_points;
   }
 
-  // A rough fit of `m` on the rough subset, with its mean squared distance there.
-  template <class Visitor>
-  Model rough_fit(const Model& m, double& distance, Visitor& visitor, const Callback& callback)
+  struct Rough_fit
   {
-    Fitter candidate(m_points, m, m_rough, m_point_map);
-    m_status = candidate.run(visitor, callback, Fitting_phase::Subset);
-    count_candidate_iterations(m_status);
-    distance = candidate.mean_squared_distance(false, m_truncation);
-    return candidate.model();
+    Model model;     // fitted
+    double distance; // its mean squared distance to the rough subset
+  };
+
+  static std::vector<Model> similar_superquadrics(const Model& m)
+  {
+    std::vector<Model> similar;
+    for(int swap = 0; swap < number_of_similar_superquadrics; ++swap)
+      similar.push_back(similar_superquadric(m, swap));
+    return similar;
+  }
+
+  // The rough fits of `starts` on the rough subset, in order, concurrently
+  // on the threads of the settings. The visitor hears of each fit's
+  // iterations after the group, in the order of the starts, so at any number
+  // of threads it hears the same; the callback is called as the fits run,
+  // one call at a time, and once it has returned false it is not called
+  // again and every fit of the group stops at its next iteration.
+  template <class Visitor>
+  std::vector<Rough_fit> rough_fits(const std::vector<Model>& starts, Visitor& visitor, const Callback& callback)
+  {
+    std::vector<Rough_fit> fits(starts.size());
+    std::vector<Fitting_status> status(starts.size());
+    std::vector<internal::Recorded_fitting_visitor> heard(starts.size());
+    std::mutex mutex;
+    bool stopped = false;
+    Callback shared_callback;
+    if(callback)
+      shared_callback = [&](double fraction) {
+        const std::lock_guard<std::mutex> lock(mutex);
+        stopped = stopped || !callback(fraction);
+        return !stopped;
+      };
+    m_tasks.for_each_task(starts.size(), [&](std::size_t i) {
+      Fitter candidate(m_points, starts[i], m_rough, m_point_map);
+      status[i] = candidate.run(heard[i], shared_callback, Fitting_phase::Subset);
+      fits[i] = Rough_fit{candidate.model(), candidate.mean_squared_distance(false, m_truncation)};
+    });
+    bool aborted = false;
+    for(std::size_t i = 0; i < starts.size(); ++i)
+    {
+      heard[i].replay(visitor);
+      count_candidate_iterations(status[i]);
+      aborted = aborted || status[i].aborted;
+    }
+    m_status = status.back();
+    m_status.aborted = aborted;
+    return fits;
   }
 
   // A challenger from `m`, fitted on the subset first (with looser
@@ -368,7 +416,8 @@ private:
   // The rough fit whose similar superquadrics best_start() compared with it
   // and found farther (none if one was closer, or without best_start()).
   std::optional<Model> m_compared_basin;
-  Fitting_status m_status; // of the last rough fit
+  Fitting_status m_status; // of the last rough fit (aborted: if any of its group was)
+  internal::Point_blocks m_tasks; // runs the rough fits of a group concurrently
 };
 
 } // namespace Blended_shapes

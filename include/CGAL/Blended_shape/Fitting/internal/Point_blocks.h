@@ -5,6 +5,7 @@
 #include <CGAL/config.h>
 
 #ifdef CGAL_LINKED_WITH_TBB
+#include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
 #endif
@@ -22,7 +23,9 @@ namespace internal {
 
 // The per-point loops of Deformable_model_fitter, cut into blocks of a fixed
 // number of points that run in parallel (with TBB, in a task arena of the
-// requested number of threads) or one after another (without TBB).
+// requested number of threads) or one after another (without TBB); and
+// a few whole tasks in the same way (for_each_task(): the short fits of
+// Superquadric_multistart_search).
 // Determinism: a block is the unit of every floating-point sum. Each block
 // adds up its own points in order into its own slot, and the slots are added
 // in block order afterwards: the association of every sum depends on the
@@ -70,6 +73,38 @@ public:
     for(const T& p : partial)
       zero += p;
     return zero;
+  }
+
+  // Whether the tasks run on more than one thread.
+  bool is_parallel() const
+  {
+#ifdef CGAL_LINKED_WITH_TBB
+    return m_arena->max_concurrency() > 1;
+#else
+    return false;
+#endif
+  }
+
+  // Calls `f(i)` for each i in [0, tasks), concurrently on the arena's
+  // threads (one after another without TBB): `f` may only write to slots of
+  // its own task. For a few large tasks, such as whole fits.
+  template <class F>
+  void for_each_task(std::size_t tasks, const F& f) const
+  {
+#ifdef CGAL_LINKED_WITH_TBB
+    if(tasks > 1 && is_parallel())
+    {
+      m_arena->execute([&] {
+        tbb::parallel_for(tbb::blocked_range<std::size_t>(0, tasks, 1), [&](const tbb::blocked_range<std::size_t>& r) {
+          for(std::size_t i = r.begin(); i != r.end(); ++i)
+            f(i);
+        });
+      });
+      return;
+    }
+#endif
+    for(std::size_t i = 0; i < tasks; ++i)
+      f(i);
   }
 
 private:
