@@ -109,7 +109,8 @@ similar_superquadric(const Deformable_model<Superquadric_ellipsoid<GeomTraits>>&
     const double r = 0.5 * (a[0] + a[1]) * stretch;
     a[0] = a[1] = r;
     e1 = q[3];
-    e2 = (std::min)((std::max)(2. - q[4], 0.1), 2.);
+    typedef Superquadric_ellipsoid<GeomTraits> Shape;
+    e2 = (std::min)((std::max)(2. - q[4], 0.1), Shape::parameter_upper_bound(Shape::E2));
   }
   const Superquadric_ellipsoid<GeomTraits> shape(a[0], a[1], a[2], e1, e2);
   return Deformable_model<Superquadric_ellipsoid<GeomTraits>>(shape, model.translation(),
