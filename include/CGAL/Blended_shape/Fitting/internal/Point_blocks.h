@@ -5,7 +5,6 @@
 #include <CGAL/config.h>
 
 #ifdef CGAL_LINKED_WITH_TBB
-#include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
 #endif
@@ -75,31 +74,17 @@ public:
     return zero;
   }
 
-  // Whether the tasks run on more than one thread.
-  bool is_parallel() const
-  {
-#ifdef CGAL_LINKED_WITH_TBB
-    return m_arena->max_concurrency() > 1;
-#else
-    return false;
-#endif
-  }
-
   // Calls `f(i)` for each i in [0, tasks), concurrently on the arena's
   // threads (one after another without TBB): `f` may only write to slots of
-  // its own task. For a few large tasks, such as whole fits.
+  // its own task. The blocks of points, and a few large tasks such as
+  // whole fits.
   template <class F>
   void for_each_task(std::size_t tasks, const F& f) const
   {
 #ifdef CGAL_LINKED_WITH_TBB
-    if(tasks > 1 && is_parallel())
+    if(tasks > 1)
     {
-      m_arena->execute([&] {
-        tbb::parallel_for(tbb::blocked_range<std::size_t>(0, tasks, 1), [&](const tbb::blocked_range<std::size_t>& r) {
-          for(std::size_t i = r.begin(); i != r.end(); ++i)
-            f(i);
-        });
-      });
+      m_arena->execute([&] { tbb::parallel_for(std::size_t(0), tasks, f); });
       return;
     }
 #endif
@@ -112,17 +97,8 @@ private:
   template <class F>
   void for_each_block(std::size_t points, const F& f) const
   {
-    const std::size_t blocks = number_of_blocks(points);
-    auto run = [&](std::size_t b) { f(b, b * block_size, (std::min)(points, (b + 1) * block_size)); };
-#ifdef CGAL_LINKED_WITH_TBB
-    if(blocks > 1)
-    {
-      m_arena->execute([&] { tbb::parallel_for(std::size_t(0), blocks, run); });
-      return;
-    }
-#endif
-    for(std::size_t b = 0; b < blocks; ++b)
-      run(b);
+    for_each_task(number_of_blocks(points),
+                  [&](std::size_t b) { f(b, b * block_size, (std::min)(points, (b + 1) * block_size)); });
   }
 
 #ifdef CGAL_LINKED_WITH_TBB
