@@ -8,6 +8,7 @@
 //   fit_single_superquadric [--quick] [--points N] [--threads N] [--output FILE]
 //   fit_single_superquadric --equivariance N [--output FILE]
 //   fit_single_superquadric --outliers FRACTION --outlier-box FACTOR [--fits N] [--output FILE]
+//   fit_single_superquadric --similar-search N [--output FILE]
 //
 // --points N: only the clouds of N points: 2000, 20000 or 200000 as above, or
 // any other N (20 fits of each view with the default integrator).
@@ -24,6 +25,14 @@
 // box of the others (the EMS protocol), and reports the RMS distance of the
 // true points to the fitted surface over their bounding-box diagonal, the
 // seconds and the strays found: one table row.
+//
+// With --similar-search, it runs the steps of fit_superquadric() (the
+// search's best_start(), the full fit, search_similar_basins()) on the N
+// single views of 2000 points of the main table (the same seeds) and reports
+// how often the search after the full fit is skipped, how often it
+// corrects the fit, and whether a skipped one would have corrected it (the
+// search run by a search of its own, which cannot skip), with how far each
+// fit moved from its start (semi-axes over the largest, exponents).
 //
 // Every fit runs in its own child process, whose peak resident memory is
 // reported (points, model meshes, AABB tree and the fit together).
@@ -42,6 +51,7 @@
 #include <cstdlib>
 #include <cstring>
 #include <iomanip>
+#include <memory>
 #include <iostream>
 #include <random>
 #include <vector>
@@ -195,12 +205,66 @@ std::string outlier_row(double fraction, double box, int fits, std::size_t threa
   return row.str();
 }
 
+// See the header: the second similar-superquadric search of
+// Superquadric_multistart_search, skipped or run, on the single views of
+// 2000 points of the main table.
+std::string similar_search_table(int views)
+{
+  typedef BS::Superquadric_multistart_search<K, std::vector<K::Point_3>, CGAL::Identity_property_map<K::Point_3>> Search;
+  const BS::Fitting_settings settings = BS::settings_from_named_parameters(BS::parameters::number_of_threads(1));
+  BS::Default_fitting_visitor visitor;
+  int skipped = 0, corrected = 0, missed = 0;
+  double skipped_axes = 0., skipped_exponents = 0.; // the largest moves of the skipped fits
+  std::ostringstream corrections;
+  for(int v = 0; v < views; ++v)
+  {
+    const unsigned int seed = 1000u + unsigned(v); // as the main table's fits
+    std::mt19937_64 rng(seed);
+    const auto truth = BS::testing::random_superellipsoid<K>(rng);
+    const auto pts = BS::testing::synthetic_scan(truth, 2000, true, 0.002, rng);
+    Search search(pts, {}, settings);
+    const auto start = search.best_start(BS::initialize_from_trimmed_moments(pts), visitor, {});
+    auto fitter = std::make_unique<Search::Fitter>(pts, start, settings);
+    BS::Fitting_status status = fitter->run(visitor, {});
+    const auto q0 = start.shape().parameters(), q1 = fitter->model().shape().parameters();
+    const double axes = (q1.head<3>() - q0.head<3>()).cwiseAbs().maxCoeff() / q0.head<3>().maxCoeff();
+    const double exponents = (q1.tail<2>() - q0.tail<2>()).cwiseAbs().maxCoeff();
+    const auto* fitted = fitter.get();
+    const std::size_t before = search.candidate_iterations();
+    fitter = search.search_similar_basins(std::move(fitter), status, visitor, {});
+    const bool changed = fitter.get() != fitted;
+    if(search.candidate_iterations() == before) // skipped
+    {
+      ++skipped;
+      skipped_axes = (std::max)(skipped_axes, axes);
+      skipped_exponents = (std::max)(skipped_exponents, exponents);
+      Search alone(pts, {}, settings);
+      missed += alone.search_similar_basins(std::move(fitter), status, visitor, {}).get() != fitted ? 1 : 0;
+      continue;
+    }
+    if(changed)
+    {
+      ++corrected;
+      corrections << (corrected > 1 ? "; " : "") << "seed " << seed << " (moved " << std::setprecision(2) << axes
+                  << ", " << exponents << ")";
+    }
+  }
+  std::ostringstream table;
+  table << "Machine: " << BB::machine_description() << "; one thread\n\n"
+        << "| single views (2000 points) | second search skipped | corrected by it | skipped but correctable "
+           "| largest move of a skipped fit (semi-axes / largest, exponents) | corrected fits (seed: move) |\n"
+        << "|---:|---:|---:|---:|---:|---|\n"
+        << "| " << views << " | " << skipped << " | " << corrected << " | " << missed << " | " << std::setprecision(2)
+        << skipped_axes << ", " << skipped_exponents << " | " << corrections.str() << " |\n";
+  return table.str();
+}
+
 } // namespace
 
 int main(int argc, char** argv)
 {
   bool quick = false;
-  int equivariance = 0, fits = 10;
+  int equivariance = 0, fits = 10, similar_search = 0;
   double outliers = -1., outlier_box = 2.;
   std::size_t only_points = 0, threads = 0;
   std::string output;
@@ -221,12 +285,15 @@ int main(int argc, char** argv)
       outlier_box = std::atof(argv[++i]);
     else if(std::strcmp(argv[i], "--fits") == 0 && i + 1 < argc && std::atoi(argv[i + 1]) > 0)
       fits = std::atoi(argv[++i]);
+    else if(std::strcmp(argv[i], "--similar-search") == 0 && i + 1 < argc && std::atoi(argv[i + 1]) > 0)
+      similar_search = std::atoi(argv[++i]);
     else
     {
       std::cerr << "usage: fit_single_superquadric [--quick] [--points N] [--threads N] [--output FILE]\n"
                    "       fit_single_superquadric --equivariance N [--output FILE]\n"
                    "       fit_single_superquadric --outliers FRACTION --outlier-box FACTOR [--fits N] "
-                   "[--threads N] [--output FILE]\n";
+                   "[--threads N] [--output FILE]\n"
+                   "       fit_single_superquadric --similar-search N [--output FILE]\n";
       return 2;
     }
   }
@@ -237,6 +304,12 @@ int main(int argc, char** argv)
                               "|---:|---:|---:|---:|---:|---:|---:|\n" +
                               outlier_row(outliers, outlier_box, fits, threads);
     std::cout << "Machine: " << BB::machine_description() << "\n\n" << table;
+    return write_table(output, table);
+  }
+  if(similar_search > 0)
+  {
+    const std::string table = similar_search_table(similar_search);
+    std::cout << table;
     return write_table(output, table);
   }
   if(equivariance > 0)

@@ -399,8 +399,8 @@ void test_misfit_rest_state(std::mt19937_64& rng)
 //   superquadrics and the fit stayed in the start's basin (no short fit);
 // - it runs when called alone, or when the fit left that basin;
 // - it still corrects a single view whose fit left its start for the wrong
-//   basin (seed 7 of benchmark/fit_single_superquadric's single views: the
-//   fit ends with e2 = 0.24 instead of 1.55 without the search).
+//   basin (the seeded view below: without the search the fit ends with
+//   e2 = 0.24 instead of 1.55).
 template <class K>
 void test_similar_basin_search()
 {
