@@ -616,14 +616,16 @@ void test_split_model_fits_to_rest()
 
   // Started from the foot points of the fitter before the split, the split
   // model's fitter finds them again (the split moves no point): the mean
-  // squared distance stays that before the split, where a search from the
-  // tessellation alone finds a larger one. Another cloud's fitter is refused.
+  // squared distance stays that before the split (to the projections'
+  // rounding, 1e-9 relatively), and is no larger than what a search from the
+  // tessellation alone finds (which can miss foot points: larger, or the
+  // same to rounding). Another cloud's fitter is refused.
   {
     BS::Deformable_model_fitter<Model> inheriting(points, BS::apply_split(robust.model(), *proposal), least_squares);
     inheriting.start_from_foot_points_of(robust);
     const double unsplit = robust.mean_squared_distance(true), inherited = inheriting.mean_squared_distance(true);
-    BS_CHECK(inherited <= unsplit * (1. + 1e-9) && inherited <= before,
-             "a split model's fitter from the foot points before the split: mean squared distance " << inherited
+    BS_CHECK(inherited <= unsplit * (1. + 1e-9) && inherited <= before * (1. + 1e-9),
+             "a split model's fitter from the foot points before the split: mean squared distance " << std::setprecision(17) << inherited
                << ", before the split " << unsplit << ", from the tessellation " << before);
     std::cout << "  mean squared distance after a split: " << inherited << " from the foot points before it ("
               << unsplit << " before it), " << before << " from the tessellation" << std::endl;

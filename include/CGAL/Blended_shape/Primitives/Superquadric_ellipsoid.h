@@ -132,28 +132,7 @@ public:
   };
 
   /// The latitude and longitude of `p` (longitude 0 at the pole).
-  Angles angles(const Chart_point& p) const
-  {
-    const double rho = std::hypot(p.x, p.y);
-    const double half_pi = 0.5 * M_PI;
-    Angles a;
-    // eta = +-(pi/2)(1 - rho): cos eta = sin(pi rho / 2), sin eta = +-sin((pi/2)(1 - rho)).
-    a.cos_eta = std::sin(half_pi * rho);
-    const double s = std::sin(half_pi * (1. - rho));
-    const double ys = (p.chart == 0) ? p.y : -p.y;
-    a.sin_eta = (p.chart == 0) ? s : -s;
-    if(rho > 0.)
-    {
-      a.cos_omega = p.x / rho;
-      a.sin_omega = ys / rho;
-    }
-    else
-    {
-      a.cos_omega = 1.;
-      a.sin_omega = 0.;
-    }
-    return a;
-  }
+  Angles angles(const Chart_point& p) const { return angles(p, chart_radius(p)); }
 
   /// The same surface point expressed in chart `target`, if that chart
   /// contains it. The two charts overlap where `rho` is in [1 - m, 1 + m]
@@ -183,6 +162,10 @@ public:
   /// \throws std::invalid_argument if `p` is outside its chart domain
   Chart_point canonical_chart_point(const Chart_point& p) const
   {
+    // Inside the unit circle by far more than rounding: the hot path (every
+    // trial of a foot-point step) without the correctly rounded hypot below.
+    if(p.x * p.x + p.y * p.y < 1. - 1e-9)
+      return p;
     const double rho = std::hypot(p.x, p.y);
     if(rho < 1. || (rho == 1. && p.chart == 0))
       return p;
@@ -198,11 +181,7 @@ public:
   /// @{
 
   /// The unit direction of `p`: `(cos eta cos omega, cos eta sin omega, sin eta)`.
-  Eigen::Vector3d direction(const Chart_point& p) const
-  {
-    const Angles a = angles(p);
-    return Eigen::Vector3d(a.cos_eta * a.cos_omega, a.cos_eta * a.sin_omega, a.sin_eta);
-  }
+  Eigen::Vector3d direction(const Chart_point& p) const { return direction(angles(p)); }
 
   /// The surface point at `p`.
   Point_3 point(const Chart_point& p) const { return surface_point(projection(p)); }
@@ -242,18 +221,21 @@ public:
   {
     const double h = 0.5 * M_PI; // d eta / d rho, up to sign
     const double sigma = (p.chart == 0) ? 1. : -1.; // chart 1 mirrors y and the latitude
-    const double rho = std::hypot(p.x, p.y);
+    const double rho = chart_radius(p);
+    const Angles an = angles(p, rho);
     // The direction is (g x, sigma g y, sigma cos(h rho)) with g = sin(h rho) / rho;
     // k = g'(rho) / rho, from its series near the pole (no cancellation).
+    // sin(h rho) = cos eta and cos(h rho) = sigma sin eta: the sines of angles()
+    // (cos(h rho) through sin(h (1 - rho)), exact on the equator).
     const double t = h * rho;
-    const double g = (rho > 0.) ? std::sin(t) / rho : h;
-    const double k = (rho < 1e-2) ? h * h * h * (-1. / 3. + t * t / 30.)
-                                  : (t * std::cos(t) - std::sin(t)) / (rho * rho * rho);
+    const double sin_t = an.cos_eta, cos_t = sigma * an.sin_eta;
+    const double g = (rho > 0.) ? sin_t / rho : h;
+    const double k = (rho < 1e-2) ? h * h * h * (-1. / 3. + t * t / 30.) : (t * cos_t - sin_t) / (rho * rho * rho);
     Eigen::Matrix<double, 3, 2> dv;
     dv << g + k * p.x * p.x, k * p.x * p.y,
           sigma * k * p.x * p.y, sigma * (g + k * p.y * p.y),
           -sigma * h * g * p.x, -sigma * h * g * p.y;
-    const internal::Superquadric_radial_projection rp = projection(p);
+    const internal::Superquadric_radial_projection rp(direction(an), m_q[E1], m_q[E2]);
     const Eigen::Vector3d a(m_q[A1], m_q[A2], m_q[A3]);
     D = a.asDiagonal() * (rp.derivative() * dv);
     return surface_point(rp);
@@ -270,6 +252,39 @@ public:
   /// @}
 
 private:
+  // |(x, y)|: the chart coordinates are at most 1 + margin < 2 in modulus
+  // (no overflow), and the plain square root costs a fraction of std::hypot
+  // on the hot path (every evaluation of every foot-point step).
+  static double chart_radius(const Chart_point& p) { return std::sqrt(p.x * p.x + p.y * p.y); }
+
+  // angles() at the chart radius `rho` of `p`.
+  static Angles angles(const Chart_point& p, double rho)
+  {
+    const double half_pi = 0.5 * M_PI;
+    Angles a;
+    // eta = +-(pi/2)(1 - rho): cos eta = sin(pi rho / 2), sin eta = +-sin((pi/2)(1 - rho)).
+    a.cos_eta = std::sin(half_pi * rho);
+    const double s = std::sin(half_pi * (1. - rho));
+    const double ys = (p.chart == 0) ? p.y : -p.y;
+    a.sin_eta = (p.chart == 0) ? s : -s;
+    if(rho > 0.)
+    {
+      a.cos_omega = p.x / rho;
+      a.sin_omega = ys / rho;
+    }
+    else
+    {
+      a.cos_omega = 1.;
+      a.sin_omega = 0.;
+    }
+    return a;
+  }
+
+  static Eigen::Vector3d direction(const Angles& a)
+  {
+    return Eigen::Vector3d(a.cos_eta * a.cos_omega, a.cos_eta * a.sin_omega, a.sin_eta);
+  }
+
   internal::Superquadric_radial_projection projection(const Chart_point& p) const
   {
     return internal::Superquadric_radial_projection(direction(p), m_q[E1], m_q[E2]);
