@@ -928,7 +928,8 @@ private:
   // With `evaluated`, m_start_points and m_start_jacobians hold the model's
   // points and chart Jacobians at the previous chart points.
   // With `search_everywhere` (and `previous`), the tessellation's closest
-  // point is projected too, whatever its distance, and the closer result wins.
+  // point is projected too, whatever its distance (unless it lies within a
+  // mesh spacing of the foot point, as above), and the closer result wins.
   Correspondences attach(const Model& model, const std::vector<std::size_t>& active,
                          const Correspondences* previous = nullptr, bool evaluated = false,
                          bool search_everywhere = false)
@@ -956,15 +957,16 @@ private:
                  ? internal::refine_foot_point(model, p, previous->u[k], iterations, tolerance, &m_start_points[k],
                                                &m_start_jacobians[k])
                  : internal::refine_foot_point(model, p, previous->u[k], iterations, tolerance);
-        // A closer tessellation point within a mesh spacing of the foot point
-        // (in the same chart) leads back to the same foot point: only one
-        // farther away can lead to another one.
-        if(search_everywhere)
-          loc = search.locate(query);
-        if(search_everywhere ||
-           (search.locate_closer_than(query, Point_3(foot.x[0], foot.x[1], foot.x[2]), loc) &&
-            !(loc.chart_point.chart == foot.u.chart &&
-              CGAL::square(loc.chart_point.x - foot.u.x) + CGAL::square(loc.chart_point.y - foot.u.y) <= spacing2)))
+        // A tessellation point (closer than the foot point, or the closest
+        // one) within a mesh spacing of the foot point (in the same chart)
+        // leads back to the same foot point: only one farther away can lead
+        // to another one.
+        const bool located = search_everywhere
+                               ? (loc = search.locate(query), true)
+                               : search.locate_closer_than(query, Point_3(foot.x[0], foot.x[1], foot.x[2]), loc);
+        if(located &&
+           !(loc.chart_point.chart == foot.u.chart &&
+             CGAL::square(loc.chart_point.x - foot.u.x) + CGAL::square(loc.chart_point.y - foot.u.y) <= spacing2))
         {
           const internal::Foot_point w =
             internal::refine_foot_point(model, p, projection_start(loc, model), iterations, tolerance);
