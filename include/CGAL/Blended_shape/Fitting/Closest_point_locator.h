@@ -61,8 +61,9 @@ barycentric coordinates, hence its domain point, at which the model is then
 evaluated analytically (the mesh is only the search structure).
 
 The chart meshes are held by reference: call rebuild() after their
-positions changed. The queries are const and change nothing: several
-threads may query one locator at once (not during a rebuild()). With a face mask (set_face_mask()), only the faces it
+positions changed. The queries are const: several threads may query one
+locator at once (not during a rebuild()); the first unbounded query builds
+the AABB tree's internal search tree, under CGAL's lock. With a face mask (set_face_mask()), only the faces it
 keeps are searched: the per-component pieces of a blended shape (sec. 3.3)
 omit the faces wholly in a discarded part of the domain.
 */
@@ -107,9 +108,10 @@ public:
     if(m_tree.empty())
       throw std::invalid_argument("Closest_point_locator: no face to search (the face mask keeps none)");
     m_tree.build();
-    // The search tree of the unbounded queries, built now rather than by the
-    // first query: the queries (of several threads at once) then only read.
-    m_tree.accelerate_distance_queries();
+    // The search tree of the unbounded queries (locate()) is built by the
+    // first of them, under CGAL's lock (several threads may query at once):
+    // the bounded queries (locate_closer_than()) of a fit's trial steps do
+    // not need it, and most rebuilds serve only those.
     m_any_primitive = m_tree.any_reference_point_and_id().second;
   }
 
