@@ -106,6 +106,42 @@ void test_closest_points_against_brute_force(std::mt19937_64& rng)
   BS_CHECK(checked == 200, "near-surface forces compared: " << checked);
 }
 
+// internal::chart_mesh_deviation_bound() bounds how far the surface is from
+// its chart meshes (the recheck at rest bounds its search by it): every
+// sampled surface point has a mesh point within the bound, by brute force,
+// on round, box-like (e = 0.1, 0.02) and octahedral (e = 2) superquadrics
+// and both mesh resolutions of the fits; and the bound is not vacuous: at
+// most 4 times the largest distance found (the octahedron's faces are flat,
+// its mesh exact: there the bound only reflects the chart's parametrization).
+template <class K>
+void test_mesh_deviation_bound(std::mt19937_64& rng)
+{
+  const double exponents[][2] = {{1., 1.}, {0.1, 0.1}, {0.02, 1.}, {2., 2.}, {0.3, 1.7}};
+  for(const auto& e : exponents)
+    for(int resolution : {5, 10})
+    {
+      const Model<K> model(BS::Superquadric_ellipsoid<K>(1.5, 0.7, 1.1, e[0], e[1]));
+      std::vector<BS::Chart_mesh<K>> charts;
+      for(std::size_t c = 0; c < model.number_of_charts(); ++c)
+      {
+        charts.emplace_back(c, model.chart_domain(c), resolution);
+        charts.back().set_positions([&](const BS::Chart_point& u) { return model.point(u); });
+      }
+      const double bound = BS::internal::chart_mesh_deviation_bound(charts, nullptr, model);
+      const BS::Closest_point_locator<K> locator(charts);
+      double largest = 0.;
+      for(int i = 0; i < 2000; ++i)
+      {
+        const auto x = model.point(BS::random_chart_point(model.shape(), std::size_t(i % 2), rng));
+        const auto hit = locator.locate_brute_force(x);
+        largest = (std::max)(largest, std::sqrt(CGAL::to_double(CGAL::squared_distance(hit.mesh_point, x))));
+      }
+      BS_CHECK(largest <= bound && (bound <= 4. * largest || largest < 1e-9),
+               "e = " << e[0] << ", " << e[1] << ", resolution " << resolution << ": surface up to " << largest
+                      << " from the mesh, bound " << bound);
+    }
+}
+
 // The energy of the linearized dynamics at fixed correspondences, recomputed
 // here from the public forces: it must not increase across a step.
 template <class K>
@@ -493,6 +529,7 @@ void run(const char* kernel, bool full)
   std::mt19937_64 rng(20261121);
   const int before = blended_shape_test::failures();
   test_closest_points_against_brute_force<K>(rng);
+  test_mesh_deviation_bound<K>(rng);
   test_energy_decrease<K>(BS::Integrator::Gauss_newton, rng);
   test_energy_decrease<K>(BS::Integrator::Explicit, rng);
   test_recovery<K>(reduced ? 1 : (full ? 8 : 2), reduced ? 1 : 5, rng);

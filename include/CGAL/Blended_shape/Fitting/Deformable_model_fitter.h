@@ -929,7 +929,9 @@ private:
   // points and chart Jacobians at the previous chart points.
   // With `search_everywhere` (and `previous`), the tessellation's closest
   // point is projected too, whatever its distance (unless it lies within a
-  // mesh spacing of the foot point, as above), and the closer result wins.
+  // mesh spacing of the foot point, as above), and the closer result wins;
+  // the search for it is bounded by the foot point's distance plus
+  // internal::chart_mesh_deviation_bound() where there are enough points.
   Correspondences attach(const Model& model, const std::vector<std::size_t>& active,
                          const Correspondences* previous = nullptr, bool evaluated = false,
                          bool search_everywhere = false)
@@ -946,6 +948,19 @@ private:
     const double spacing2 = 1. / CGAL::square(double(m_settings.mesh_resolution)); // squared chart distance
     // The tree is rebuilt here, before the parallel sweep, which only reads it.
     const Closest_point_locator<Geom_traits>& search = locator();
+    // The search everywhere looks for the closest mesh point, which lies
+    // within the foot point's distance plus the mesh's deviation from the
+    // surface: bounded by that, it visits far fewer nodes of the tree than
+    // an unbounded search (which starts from the nearest mesh vertex). The
+    // bound costs four evaluations per face: taken where the points
+    // outnumber them.
+    std::size_t faces_searched = 0;
+    for(const std::vector<bool>& kept : m_kept_faces)
+      faces_searched += std::size_t(std::count(kept.begin(), kept.end(), true));
+    const std::optional<double> deviation =
+      (search_everywhere && previous != nullptr && active.size() >= 8 * faces_searched)
+        ? std::optional<double>(internal::chart_mesh_deviation_bound(m_charts, &m_kept_faces, model))
+        : std::nullopt;
     m_blocks.for_each_point(active.size(), [&](std::size_t k) {
       const Eigen::Vector3d& p = m_points[active[k]];
       const Point_3 query(p[0], p[1], p[2]);
@@ -961,9 +976,22 @@ private:
         // one) within a mesh spacing of the foot point (in the same chart)
         // leads back to the same foot point: only one farther away can lead
         // to another one.
-        const bool located = search_everywhere
-                               ? (loc = search.locate(query), true)
-                               : search.locate_closer_than(query, Point_3(foot.x[0], foot.x[1], foot.x[2]), loc);
+        bool located;
+        if(!search_everywhere)
+          located = search.locate_closer_than(query, Point_3(foot.x[0], foot.x[1], foot.x[2]), loc);
+        else if(deviation)
+        {
+          // any point at the foot point's distance plus the deviation bounds the search
+          const double d = std::sqrt(foot.squared_distance);
+          const Eigen::Vector3d b =
+            (d > 0.) ? Eigen::Vector3d(p + ((d + *deviation) / d) * (foot.x - p)) : Eigen::Vector3d(p.x() + *deviation, p.y(), p.z());
+          located = search.locate_closer_than(query, Point_3(b[0], b[1], b[2]), loc);
+        }
+        else
+        {
+          loc = search.locate(query);
+          located = true;
+        }
         if(located &&
            !(loc.chart_point.chart == foot.u.chart &&
              CGAL::square(loc.chart_point.x - foot.u.x) + CGAL::square(loc.chart_point.y - foot.u.y) <= spacing2))
