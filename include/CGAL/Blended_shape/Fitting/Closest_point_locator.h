@@ -111,7 +111,11 @@ public:
     // The search tree of the unbounded queries (locate()) is built by the
     // first of them, under CGAL's lock (several threads may query at once):
     // the bounded queries (locate_closer_than()) of a fit's trial steps do
-    // not need it, and most rebuilds serve only those.
+    // not need it, and most rebuilds serve only those. (Without threads
+    // CGAL does not lock: there it is built now.)
+#ifndef CGAL_HAS_THREADS
+    m_tree.accelerate_distance_queries();
+#endif
     m_any_primitive = m_tree.any_reference_point_and_id().second;
   }
 
