@@ -955,13 +955,15 @@ private:
     // an unbounded search (which starts from the nearest mesh vertex). The
     // bound costs four evaluations per face: taken where the points
     // outnumber them.
-    std::size_t faces_searched = 0;
-    for(const std::vector<bool>& kept : m_kept_faces)
-      faces_searched += std::size_t(std::count(kept.begin(), kept.end(), true));
-    const std::optional<double> deviation =
-      (search_everywhere && previous != nullptr && active.size() >= 8 * faces_searched)
-        ? std::optional<double>(internal::chart_mesh_deviation_bound(m_charts, &m_kept_faces, model))
-        : std::nullopt;
+    std::optional<double> deviation;
+    if(search_everywhere && previous != nullptr)
+    {
+      std::size_t faces_searched = 0;
+      for(const std::vector<bool>& kept : m_kept_faces)
+        faces_searched += std::size_t(std::count(kept.begin(), kept.end(), true));
+      if(active.size() >= 8 * faces_searched)
+        deviation = internal::chart_mesh_deviation_bound(m_charts, &m_kept_faces, model);
+    }
     m_blocks.for_each_point(active.size(), [&](std::size_t k) {
       const Eigen::Vector3d& p = m_points[active[k]];
       const Point_3 query(p[0], p[1], p[2]);
