@@ -22,8 +22,8 @@ enum class Integrator
   /// linearized dynamics, halved until the step is accepted (see Deformable_model_fitter::step()).
   Explicit,
   /// An implicit (damped Gauss-Newton, Levenberg-Marquardt) step of the same dynamics with the
-  /// same correspondences: `(J^T J + lambda diag(J^T J)) dq = J^T r`.
-  /// Same rest states, far fewer iterations. The default.
+  /// same correspondences: `(J^T J + lambda diag(J^T J)) dq = J^T r`, within a box trust
+  /// region (Deformable_model_fitter::maximum_step). Same rest states, far fewer iterations. The default.
   Gauss_newton
 };
 
