@@ -489,8 +489,8 @@ void test_misfit_rest_state(std::mt19937_64& rng)
 //   superquadrics and the fit stayed in the start's basin (no short fit);
 // - it runs when called alone, or when the fit left that basin;
 // - it still corrects a single view whose fit left its start for the wrong
-//   basin (the seeded view below: without the search the fit ends with
-//   e2 = 0.24 instead of 1.55).
+//   basin (the seeded view below: without the search the fit ends in
+//   another basin, with an RMS about 25 times the noise).
 template <class K>
 void test_similar_basin_search()
 {

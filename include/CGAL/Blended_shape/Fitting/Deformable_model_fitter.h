@@ -105,7 +105,8 @@ projection removes the tangential error of locating `u_i` on a tessellation,
 which would otherwise pin model points to data points tangentially and slow
 the fit down like point-to-point ICP;
 (3) the integrator moves `q` with these correspondences (`u_i`, `n_i`,
-`w_i`) fixed; a step is only accepted if it lowers the energy
+`w_i`) fixed (Gauss-Newton: within the box trust region of maximum_step);
+a step is only accepted if it lowers the energy
 `E = (1/2) sum_i w_i (n_i . (p_i - x(u_i)))^2` at these correspondences and
 does not increase the true energy (see step()).
 
