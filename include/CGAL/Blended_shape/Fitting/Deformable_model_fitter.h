@@ -766,8 +766,9 @@ private:
   }
 
   // The step solve of the implicit integrator (Integrator::Gauss_newton):
-  // (H + lambda diag(H)) dq = g, the damping lambda lowered after an
-  // accepted trial and raised after a rejected one.
+  // (H + lambda diag(H)) dq = g within the box trust region
+  // (solve_in_step_box()), the damping lambda lowered after an accepted
+  // trial and raised after a rejected one.
   void damped_gauss_newton_step(Step_trials& trials, Step_report& report)
   {
     const std::size_t n = m_model.number_of_parameters();
@@ -777,7 +778,7 @@ private:
     {
       Eigen::MatrixXd A = trials.system.H;
       A.diagonal() += m_lambda * diag + Eigen::VectorXd::Constant(Eigen::Index(n), ridge);
-      const Eigen::VectorXd delta = solve_in_step_box(A, trials.system.g);
+      const Eigen::VectorXd delta = solve_in_step_box(A, trials.system.g, trials.q);
       if(delta.allFinite() && try_step(delta, trials, report))
         m_lambda = (std::max)(m_lambda / 3., 1e-9);
       else if(!trials.negligible) // at a rest state the damping is not to blame: it would
@@ -791,42 +792,72 @@ private:
     return m_model.parameter_kind(i) == Parameter_kind::Length ? maximum_step * m_diameter : maximum_step;
   }
 
-  // A dq = g, with each |dq_i| at most step_limit(i) (a box trust region):
-  // the components that leave the box are held on its face and the others
-  // solved again with them (an active set; a few rounds). Clamping the free
-  // solution instead would keep its other components, which were balanced
-  // against the clamped ones' full move, and the step would not lower the
-  // energy of its own model.
-  Eigen::VectorXd solve_in_step_box(const Eigen::MatrixXd& A, const Eigen::VectorXd& g) const
+  // A dq = g for the step from `q`, with each dq_i in the box
+  // [-step_limit(i), step_limit(i)] cut by the parameter's bounds (a box
+  // trust region): the components that leave the box are held on its face
+  // and the others solved again with them, until none leaves (an active set:
+  // the held set only grows). Clamping the free solution instead would keep
+  // its other components, which were balanced against the clamped ones' full
+  // move. If the components held together make a step that does not lower
+  // the quadratic model `g^T dq - (1/2) dq^T A dq` (holding several at once
+  // can), the free solution scaled down into the box is taken, which always
+  // does.
+  Eigen::VectorXd solve_in_step_box(const Eigen::MatrixXd& A, const Eigen::VectorXd& g,
+                                    const Eigen::VectorXd& q) const
   {
     const Eigen::Index n = A.rows();
-    Eigen::VectorXd delta = A.ldlt().solve(g);
-    std::vector<bool> held(std::size_t(n), false);
-    for(int round = 0; round < 4 && delta.allFinite(); ++round)
+    const Eigen::VectorXd free_step = A.ldlt().solve(g);
+    if(!free_step.allFinite())
+      return free_step;
+    Eigen::VectorXd low(n), high(n);
+    for(Eigen::Index i = 0; i < n; ++i)
     {
-      bool more = false;
+      const double limit = step_limit(std::size_t(i));
+      low[i] = (std::min)(0., (std::max)(-limit, lower_bound(std::size_t(i)) - q[i]));
+      high[i] = (std::max)(0., (std::min)(limit, upper_bound(std::size_t(i)) - q[i]));
+    }
+    Eigen::VectorXd delta = free_step;
+    std::vector<bool> held(std::size_t(n), false);
+    for(bool more = true; more;)
+    {
+      more = false;
       for(Eigen::Index i = 0; i < n; ++i)
-      {
-        const double limit = step_limit(std::size_t(i));
-        if(!held[std::size_t(i)] && std::abs(delta[i]) > limit)
+        if(!held[std::size_t(i)] && (delta[i] < low[i] || delta[i] > high[i]))
         {
           held[std::size_t(i)] = more = true;
-          delta[i] = std::copysign(limit, delta[i]);
+          delta[i] = delta[i] < low[i] ? low[i] : high[i];
         }
-      }
       if(!more)
         break;
-      std::vector<Eigen::Index> free, fixed;
+      std::vector<Eigen::Index> free_indices;
       for(Eigen::Index i = 0; i < n; ++i)
-        (held[std::size_t(i)] ? fixed : free).push_back(i);
-      if(free.empty())
+        if(!held[std::size_t(i)])
+          free_indices.push_back(i);
+      const Eigen::Index m = Eigen::Index(free_indices.size());
+      if(m == 0)
         break;
-      const Eigen::MatrixXd A_free = A(free, free);
-      const Eigen::VectorXd rhs = g(free) - A(free, fixed) * delta(fixed);
+      Eigen::MatrixXd A_free(m, m);
+      Eigen::VectorXd rhs(m);
+      for(Eigen::Index a = 0; a < m; ++a)
+      {
+        const Eigen::Index i = free_indices[std::size_t(a)];
+        rhs[a] = g[i];
+        for(Eigen::Index k = 0; k < n; ++k)
+          if(held[std::size_t(k)])
+            rhs[a] -= A(i, k) * delta[k];
+        for(Eigen::Index b = 0; b < m; ++b)
+          A_free(a, b) = A(i, free_indices[std::size_t(b)]);
+      }
       const Eigen::VectorXd delta_free = A_free.ldlt().solve(rhs);
-      delta(free) = delta_free;
+      for(Eigen::Index a = 0; a < m; ++a)
+        delta[free_indices[std::size_t(a)]] = delta_free[a];
     }
-    return delta;
+    if(delta.allFinite() && g.dot(delta) - 0.5 * delta.dot(A * delta) > 0.)
+      return delta;
+    double t = 1.;
+    for(Eigen::Index i = 0; i < n; ++i)
+      t = (std::min)(t, step_limit(std::size_t(i)) / (std::max)(std::abs(free_step[i]), 1e-300));
+    return t * free_step;
   }
 
   // The step solve of the paper's explicit integrator (eq. 7):

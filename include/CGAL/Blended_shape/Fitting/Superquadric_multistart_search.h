@@ -287,8 +287,10 @@ public:
 
   /// Whether best_start() compared the similar superquadrics of the start
   /// with it and none was closer: then search_similar_basins() skips a fit
-  /// that stayed in the start's basin (see the class description).
+  /// that stayed in the start's basin (see the class description). False
+  /// before best_start() and after an aborted one.
   bool start_basin_compared() const { return m_compared_basin.has_value(); }
+
   /// The iterations of all the short fits so far.
   std::size_t candidate_iterations() const { return m_candidate_iterations; }
   /// Of candidate_iterations(), those whose steps used all points
