@@ -798,10 +798,10 @@ private:
   // and the others solved again with them, until none leaves (an active set:
   // the held set only grows). Clamping the free solution instead would keep
   // its other components, which were balanced against the clamped ones' full
-  // move. If the components held together make a step that does not lower
-  // the quadratic model `g^T dq - (1/2) dq^T A dq` (holding several at once
-  // can), the free solution scaled down into the box is taken, which always
-  // does.
+  // move. Holding several at once can hold one whose force points back into
+  // the box, and even make a step that does not lower the quadratic model
+  // `g^T dq - (1/2) dq^T A dq`; projected Gauss-Seidel sweeps then take the
+  // step to the model's minimum in the box.
   Eigen::VectorXd solve_in_step_box(const Eigen::MatrixXd& A, const Eigen::VectorXd& g,
                                     const Eigen::VectorXd& q) const
   {
@@ -852,12 +852,31 @@ private:
       for(Eigen::Index a = 0; a < m; ++a)
         delta[free_indices[std::size_t(a)]] = delta_free[a];
     }
-    if(delta.allFinite() && g.dot(delta) - 0.5 * delta.dot(A * delta) > 0.)
-      return delta;
-    double t = 1.;
-    for(Eigen::Index i = 0; i < n; ++i)
-      t = (std::min)(t, step_limit(std::size_t(i)) / (std::max)(std::abs(free_step[i]), 1e-300));
-    return t * free_step;
+    if(std::find(held.begin(), held.end(), true) == held.end() || !delta.allFinite())
+      return delta; // the free step, inside the box
+    // Projected Gauss-Seidel on the quadratic model in the box, from the
+    // active set's step if it lowers the model, else from 0: each update
+    // minimizes the model along one parameter within the box, so the model
+    // only falls, and a held component whose force points back into the
+    // box is released.
+    if(!(g.dot(delta) - 0.5 * delta.dot(A * delta) > 0.))
+      delta.setZero();
+    for(int sweep = 0; sweep < 100; ++sweep)
+    {
+      double change = 0.;
+      for(Eigen::Index i = 0; i < n; ++i)
+      {
+        if(!(A(i, i) > 0.))
+          continue;
+        const double r = g[i] - A.row(i).dot(delta) + A(i, i) * delta[i];
+        const double d = (std::min)((std::max)(r / A(i, i), low[i]), high[i]);
+        change = (std::max)(change, std::abs(d - delta[i]) / step_limit(std::size_t(i)));
+        delta[i] = d;
+      }
+      if(change <= 1e-12)
+        break;
+    }
+    return delta;
   }
 
   // The step solve of the paper's explicit integrator (eq. 7):
