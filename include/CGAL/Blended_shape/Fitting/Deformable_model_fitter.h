@@ -854,17 +854,25 @@ private:
     }
     if(std::find(held.begin(), held.end(), true) == held.end() || !delta.allFinite())
       return delta; // the free step, inside the box
-    // Projected Gauss-Seidel on the quadratic model in the box, from the
-    // active set's step if it lowers the model, else from 0: each update
-    // minimizes the model along one parameter within the box, so the model
-    // only falls, and a held component whose force points back into the
-    // box is released.
+    // from the active set's step if it lowers the model, else from 0
     if(!(g.dot(delta) - 0.5 * delta.dot(A * delta) > 0.))
       delta.setZero();
+    minimize_in_box(A, g, low, high, delta);
+    return delta;
+  }
+
+  // Projected Gauss-Seidel sweeps on the quadratic model
+  // `g^T dq - (1/2) dq^T A dq` (maximized) over the box [low, high], from
+  // `delta` (in the box): each update is the best along one parameter within
+  // the box, so the model only improves, and a component on a face whose
+  // force points back into the box leaves the face.
+  void minimize_in_box(const Eigen::MatrixXd& A, const Eigen::VectorXd& g, const Eigen::VectorXd& low,
+                       const Eigen::VectorXd& high, Eigen::VectorXd& delta) const
+  {
     for(int sweep = 0; sweep < 100; ++sweep)
     {
       double change = 0.;
-      for(Eigen::Index i = 0; i < n; ++i)
+      for(Eigen::Index i = 0; i < A.rows(); ++i)
       {
         if(!(A(i, i) > 0.))
           continue;
@@ -876,7 +884,6 @@ private:
       if(change <= 1e-12)
         break;
     }
-    return delta;
   }
 
   // The step solve of the paper's explicit integrator (eq. 7):
