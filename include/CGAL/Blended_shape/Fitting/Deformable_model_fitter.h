@@ -7,6 +7,8 @@
 #include <CGAL/Blended_shape/Fitting/Fitting_settings.h>
 #include <CGAL/Blended_shape/Fitting/Robust_loss.h>
 #include <CGAL/Blended_shape/Fitting/Fitting_visitor.h>
+#include <CGAL/Blended_shape/Fitting/internal/Box_constrained_step.h>
+#include <CGAL/Blended_shape/Fitting/internal/chart_mesh_deviation_bound.h>
 #include <CGAL/Blended_shape/Fitting/internal/Point_blocks.h>
 #include <CGAL/Blended_shape/IO/check_points.h>
 #include <CGAL/Blended_shape/internal/Parameter_table.h>
@@ -51,6 +53,13 @@ struct Step_report
   /// No step can lower the energy any more: the proposed change is negligible, or the
   /// damping (Gauss-Newton) or the step-size reduction (explicit) is exhausted.
   bool stalled = false;
+  /// Gauss-Newton: whether the step of the last attempt is the maximum of the
+  /// quadratic model in the box trust region (see maximum_step). False when
+  /// the projected Gauss-Seidel sweeps that find it, where the free step
+  /// leaves the box, stopped at 100 (badly conditioned normal equations):
+  /// the step is then the best one they found, which still lowers the
+  /// linearized energy.
+  bool step_in_box_converged = true;
 };
 
 /// \ingroup PkgBlendedShapeFitting
@@ -778,8 +787,9 @@ private:
     {
       Eigen::MatrixXd A = trials.system.H;
       A.diagonal() += m_lambda * diag + Eigen::VectorXd::Constant(Eigen::Index(n), ridge);
-      const Eigen::VectorXd delta = solve_in_step_box(A, trials.system.g, trials.q);
-      if(delta.allFinite() && try_step(delta, trials, report))
+      const internal::Box_constrained_step box = solve_in_step_box(A, trials.system.g, trials.q);
+      report.step_in_box_converged = box.converged;
+      if(box.delta.allFinite() && try_step(box.delta, trials, report))
         m_lambda = (std::max)(m_lambda / 3., 1e-9);
       else if(!trials.negligible) // at a rest state the damping is not to blame: it would
         m_lambda = (std::min)(m_lambda * 8., 1e12); // only slow down the next phase's first steps
@@ -794,96 +804,19 @@ private:
 
   // A dq = g for the step from `q`, with each dq_i in the box
   // [-step_limit(i), step_limit(i)] cut by the parameter's bounds (a box
-  // trust region): the components that leave the box are held on its face
-  // and the others solved again with them, until none leaves (an active set:
-  // the held set only grows). Clamping the free solution instead would keep
-  // its other components, which were balanced against the clamped ones' full
-  // move. Holding several at once can hold one whose force points back into
-  // the box, and even make a step that does not lower the quadratic model
-  // `g^T dq - (1/2) dq^T A dq`; projected Gauss-Seidel sweeps then take the
-  // step to the model's minimum in the box.
-  Eigen::VectorXd solve_in_step_box(const Eigen::MatrixXd& A, const Eigen::VectorXd& g,
-                                    const Eigen::VectorXd& q) const
+  // trust region), as internal::solve_in_box() finds it.
+  internal::Box_constrained_step solve_in_step_box(const Eigen::MatrixXd& A, const Eigen::VectorXd& g,
+                                                   const Eigen::VectorXd& q) const
   {
     const Eigen::Index n = A.rows();
-    const Eigen::VectorXd free_step = A.ldlt().solve(g);
-    if(!free_step.allFinite())
-      return free_step;
-    Eigen::VectorXd low(n), high(n);
+    Eigen::VectorXd low(n), high(n), limit(n);
     for(Eigen::Index i = 0; i < n; ++i)
     {
-      const double limit = step_limit(std::size_t(i));
-      low[i] = (std::min)(0., (std::max)(-limit, lower_bound(std::size_t(i)) - q[i]));
-      high[i] = (std::max)(0., (std::min)(limit, upper_bound(std::size_t(i)) - q[i]));
+      limit[i] = step_limit(std::size_t(i));
+      low[i] = (std::min)(0., (std::max)(-limit[i], lower_bound(std::size_t(i)) - q[i]));
+      high[i] = (std::max)(0., (std::min)(limit[i], upper_bound(std::size_t(i)) - q[i]));
     }
-    Eigen::VectorXd delta = free_step;
-    std::vector<bool> held(std::size_t(n), false);
-    for(bool more = true; more;)
-    {
-      more = false;
-      for(Eigen::Index i = 0; i < n; ++i)
-        if(!held[std::size_t(i)] && (delta[i] < low[i] || delta[i] > high[i]))
-        {
-          held[std::size_t(i)] = more = true;
-          delta[i] = delta[i] < low[i] ? low[i] : high[i];
-        }
-      if(!more)
-        break;
-      std::vector<Eigen::Index> free_indices;
-      for(Eigen::Index i = 0; i < n; ++i)
-        if(!held[std::size_t(i)])
-          free_indices.push_back(i);
-      const Eigen::Index m = Eigen::Index(free_indices.size());
-      if(m == 0)
-        break;
-      Eigen::MatrixXd A_free(m, m);
-      Eigen::VectorXd rhs(m);
-      for(Eigen::Index a = 0; a < m; ++a)
-      {
-        const Eigen::Index i = free_indices[std::size_t(a)];
-        rhs[a] = g[i];
-        for(Eigen::Index k = 0; k < n; ++k)
-          if(held[std::size_t(k)])
-            rhs[a] -= A(i, k) * delta[k];
-        for(Eigen::Index b = 0; b < m; ++b)
-          A_free(a, b) = A(i, free_indices[std::size_t(b)]);
-      }
-      const Eigen::VectorXd delta_free = A_free.ldlt().solve(rhs);
-      for(Eigen::Index a = 0; a < m; ++a)
-        delta[free_indices[std::size_t(a)]] = delta_free[a];
-    }
-    if(std::find(held.begin(), held.end(), true) == held.end() || !delta.allFinite())
-      return delta; // the free step, inside the box
-    // from the active set's step if it lowers the model, else from 0
-    if(!(g.dot(delta) - 0.5 * delta.dot(A * delta) > 0.))
-      delta.setZero();
-    minimize_in_box(A, g, low, high, delta);
-    return delta;
-  }
-
-  // Projected Gauss-Seidel sweeps on the quadratic model
-  // `g^T dq - (1/2) dq^T A dq` (maximized) over the box [low, high], from
-  // `delta` (in the box): each update is the best along one parameter within
-  // the box, so the model only improves, and a component on a face whose
-  // force points back into the box leaves the face.
-  void minimize_in_box(const Eigen::MatrixXd& A, const Eigen::VectorXd& g, const Eigen::VectorXd& low,
-                       const Eigen::VectorXd& high, Eigen::VectorXd& delta) const
-  {
-    for(int sweep = 0; sweep < 100; ++sweep)
-    {
-      double change = 0.;
-      for(Eigen::Index i = 0; i < A.rows(); ++i)
-      {
-        if(!(A(i, i) > 0.))
-          continue;
-        const double r = g[i] - A.row(i).dot(delta) + A(i, i) * delta[i];
-        const double d = (std::min)((std::max)(r / A(i, i), low[i]), high[i]);
-        change = (std::max)(change, std::abs(d - delta[i]) / step_limit(std::size_t(i)));
-        delta[i] = d;
-      }
-      if(change <= 1e-12)
-        break;
-    }
+    return internal::solve_in_box(A, g, low, high, limit);
   }
 
   // The step solve of the paper's explicit integrator (eq. 7):

@@ -291,6 +291,23 @@ public:
   /// before best_start() and after an aborted one.
   bool start_basin_compared() const { return m_compared_basin.has_value(); }
 
+  /// Whether the fit `b` is still in the basin of the rough fit `a`, as
+  /// search_similar_basins() decides whether to skip its search: each
+  /// semi-axis and the centre within 10 % of a's largest semi-axis, each
+  /// exponent within 0.25, the rotation within 10 degrees (see the class
+  /// description for what fits moved by).
+  static bool in_same_basin(const Model& a, const Model& b)
+  {
+    const auto qa = a.shape().parameters();
+    const auto qb = b.shape().parameters();
+    const double size = qa.template head<3>().maxCoeff();
+    const double cos_half_angle = std::abs(a.quaternion().dot(b.quaternion()));
+    return (qb.template head<3>() - qa.template head<3>()).cwiseAbs().maxCoeff() <= 0.1 * size &&
+           (qb.template tail<2>() - qa.template tail<2>()).cwiseAbs().maxCoeff() <= 0.25 &&
+           (b.translation() - a.translation()).norm() <= 0.1 * size &&
+           cos_half_angle >= std::cos(0.5 * 10. * CGAL_PI / 180.);
+  }
+
   /// The iterations of all the short fits so far.
   std::size_t candidate_iterations() const { return m_candidate_iterations; }
   /// Of candidate_iterations(), those whose steps used all points
@@ -381,22 +398,6 @@ private:
     st = challenger->run(visitor, callback);
     count_candidate_iterations(st);
     return challenger;
-  }
-
-  // Whether the fit `b` is still in the basin of the rough fit `a`: each
-  // semi-axis and the centre within 10 % of a's largest semi-axis, each
-  // exponent within 0.25, the rotation within 10 degrees (see the class
-  // description for what fits moved by).
-  static bool in_same_basin(const Model& a, const Model& b)
-  {
-    const auto qa = a.shape().parameters();
-    const auto qb = b.shape().parameters();
-    const double size = qa.template head<3>().maxCoeff();
-    const double cos_half_angle = std::abs(a.quaternion().dot(b.quaternion()));
-    return (qb.template head<3>() - qa.template head<3>()).cwiseAbs().maxCoeff() <= 0.1 * size &&
-           (qb.template tail<2>() - qa.template tail<2>()).cwiseAbs().maxCoeff() <= 0.25 &&
-           (b.translation() - a.translation()).norm() <= 0.1 * size &&
-           cos_half_angle >= std::cos(0.5 * 10. * CGAL_PI / 180.);
   }
 
   // With robust weighting, the candidates' squared distances are capped at
