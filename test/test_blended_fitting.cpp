@@ -432,6 +432,61 @@ void test_restructure(const Model<K>& truth)
             << " steps differ from a new fitter's" << std::endl;
 }
 
+// A fit whose model refuses every move of its blending regions (as a
+// region pushed against its chart's edge refuses any move outwards, however
+// short): after the first refused trial the Gauss-Newton step holds the
+// region parameters for the rest of the step, and the other parameters
+// still move. (Before, the refusals only raised the damping, until every
+// parameter was frozen and the fit stalled where it started: split fits of
+// evolution were undone with the surface unmoved.)
+template <class K>
+struct Regions_pinned_model : Model<K>
+{
+  using Model<K>::Model;
+  explicit Regions_pinned_model(const Model<K>& m) : Model<K>(m) {}
+  void set_parameters(const Eigen::VectorXd& q)
+  {
+    const Eigen::VectorXd now = this->parameters();
+    for(std::size_t i = 0; i < this->number_of_parameters(); ++i)
+      if(this->is_blending_region_parameter(i) && q[Eigen::Index(i)] != now[Eigen::Index(i)])
+        throw std::invalid_argument("Regions_pinned_model: region parameter " + std::to_string(i) + " moved");
+    Model<K>::set_parameters(q);
+  }
+};
+
+template <class K>
+void test_refused_region_moves(const Model<K>& truth)
+{
+  double sigma, diagonal;
+  const auto pts = noisy_samples<K>(truth, reduced ? 600 : 1500, 0.002, 41, sigma, diagonal);
+  // the root alone, roughly placed, then split where the nose is (h = 0)
+  BS::Blended_shape<K> shape(BS::Superquadric_ellipsoid<K>(1., 0.9, 1.1, 0.8, 1.1));
+  shape.split(0, 1, Region::make_parameters(0., 0.05, 0.35, 0.33, 0., 0.9, 0.), 0.07);
+  const Regions_pinned_model<K> start(Model<K>(shape, truth.translation(), truth.quaternion()));
+  std::size_t regions = 0;
+  for(std::size_t i = 0; i < start.number_of_parameters(); ++i)
+    regions += start.is_blending_region_parameter(i) ? 1 : 0;
+  BS_CHECK(regions == 7, "a split model has " << regions << " blending-region parameters, not 7");
+  BS::Fitting_settings settings;
+  BS::Deformable_model_fitter<Regions_pinned_model<K>> fitter(pts, start, settings);
+  fitter.use_all_points(true);
+  const double before = fitter.mean_squared_distance(true);
+  int accepted = 0;
+  for(int it = 0; it < 10; ++it)
+    accepted += fitter.step().accepted ? 1 : 0;
+  const double after = fitter.mean_squared_distance(true);
+  const Eigen::VectorXd q0 = start.parameters(), q1 = fitter.model().parameters();
+  bool regions_kept = true;
+  for(std::size_t i = 0; i < start.number_of_parameters(); ++i)
+    regions_kept = regions_kept && (!start.is_blending_region_parameter(i) || q0[Eigen::Index(i)] == q1[Eigen::Index(i)]);
+  BS_CHECK(regions_kept, "a region parameter moved although the model refuses it");
+  BS_CHECK(accepted >= 5 && after < 0.5 * before,
+           "refused region moves: " << accepted << " of 10 steps accepted, mean squared distance " << before
+                                    << " -> " << after);
+  std::cout << "  refused region moves: " << accepted << " of 10 steps accepted, mean squared distance " << before
+            << " -> " << after << std::endl;
+}
+
 // Fitting_settings::number_of_threads: a blended model's fit (Cauchy
 // weights, subset then all points, trial sweeps, the recheck at rest) gives
 // the same bits on one thread and on two: parameters, the energy after every
@@ -483,6 +538,7 @@ void run(const char* kernel)
   test_recovery<K>("body with nose", nose, 1., true);
   test_recovery<K>("body with hole", hole, 0.5, false);
   test_restructure<K>(nose);
+  test_refused_region_moves<K>(nose);
   test_same_bits_at_any_number_of_threads<K>(nose);
   std::cout << "blended fitting with " << kernel
             << (blended_shape_test::failures() == before ? ": SUCCESS" : ": FAILED") << std::endl;

@@ -60,6 +60,11 @@ public:
   /// Whether parameter `i` places one component relative to another (held by
   /// the fitter's loose placement spring, `Fitting_settings::placement_stiffness`).
   bool is_placement_parameter(std::size_t i) const;
+  /// Whether parameter `i` places a blending region in its chart: a
+  /// parameter whose moves set_parameters() may refuse although it has no
+  /// bounds (a region must stay inside its chart). The fitter holds these
+  /// for the rest of a step whose trial the model refused.
+  bool is_blending_region_parameter(std::size_t i) const;
 
   /// The number of charts.
   std::size_t number_of_charts() const;

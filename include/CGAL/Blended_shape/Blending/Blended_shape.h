@@ -305,6 +305,9 @@ public:
   /// Whether parameter `i` belongs to the rigid placement of a component relative to its parent (sec. 3.5).
   bool is_placement_parameter(std::size_t i) const { return m_layout.address(i).is_placement; }
 
+  /// Whether parameter `i` is one of a blend's seven region parameters `(e_u, e_v, e_1, e_2, e_theta, w, h)`.
+  bool is_blending_region_parameter(std::size_t i) const { return m_layout.address(i).is_blend; }
+
   /// Lower bound of parameter `i`.
   double parameter_lower_bound(std::size_t i) const { return bounds(i).first; }
   /// Upper bound of parameter `i`.

@@ -114,6 +114,13 @@ public:
   {
     return i >= number_of_pose_parameters && m_shape.is_placement_parameter(i - number_of_pose_parameters);
   }
+  /// Whether parameter `i` places a blending region in its chart
+  /// (Blended_shape::is_blending_region_parameter()): set_parameters()
+  /// refuses a region that leaves its chart.
+  bool is_blending_region_parameter(std::size_t i) const
+  {
+    return i >= number_of_pose_parameters && m_shape.is_blending_region_parameter(i - number_of_pose_parameters);
+  }
   /// Whether parameter `i` is held fixed (Blended_shape::is_fixed_parameter()); its Jacobian column is zero.
   bool is_fixed_parameter(std::size_t i) const
   {

@@ -105,6 +105,8 @@ public:
   bool is_pose_parameter(std::size_t i) const { return i < number_of_pose_parameters; }
   /// Whether parameter `i` places a component relative to another: never (one primitive).
   bool is_placement_parameter(std::size_t) const { return false; }
+  /// Whether parameter `i` places a blending region: never (one primitive).
+  bool is_blending_region_parameter(std::size_t) const { return false; }
 
   /// The parameter vector `q` (the quaternion is stored normalized).
   Eigen::VectorXd parameters() const { return m_pose.model_parameters(m_shape.parameters()); }

@@ -705,6 +705,8 @@ private:
     const Eigen::VectorXd& q;
     const Normal_equations& system;
     bool negligible = false; // a trial's decrease was under the tolerance: a rest state
+    bool refused = false;    // the model refused the last trial's parameters
+    bool regions_held = false; // the blending-region parameters stay as they are (after a refusal)
     int sweeps = 0;          // closest-point sweeps spent on trials
   };
 
@@ -728,7 +730,8 @@ private:
     }
     catch(const std::invalid_argument&)
     {
-      return false; // e.g. a blending region leaving its chart: a step too far
+      trials.refused = true; // e.g. a blending region leaving its chart
+      return false;
     }
     const double spring1 = spring_energy(q1, active.size());
     double E1 = spring1;
@@ -777,7 +780,15 @@ private:
   // The step solve of the implicit integrator (Integrator::Gauss_newton):
   // (H + lambda diag(H)) dq = g within the box trust region
   // (solve_in_step_box()), the damping lambda lowered after an accepted
-  // trial and raised after a rejected one.
+  // trial and raised after a rejected one. After a trial the model refuses
+  // (a blending region pushed out of its chart), the region parameters are
+  // held for the rest of the step instead: a fit pushes a region against
+  // its chart's edge in ever shorter accepted steps, and there any move
+  // outwards, however short, is refused. Before, the damping grew instead,
+  // to 1e9 and more, which froze every other parameter while the regions'
+  // own (whose diagonals of J^T J are tiny: 1e-12 and below) still pushed
+  // out: split fits stalled at their start and were undone with the surface
+  // unmoved (measured on the box/cylinder scan's and the mannequin's).
   void damped_gauss_newton_step(Step_trials& trials, Step_report& report)
   {
     const std::size_t n = m_model.number_of_parameters();
@@ -787,10 +798,14 @@ private:
     {
       Eigen::MatrixXd A = trials.system.H;
       A.diagonal() += m_lambda * diag + Eigen::VectorXd::Constant(Eigen::Index(n), ridge);
-      const internal::Box_constrained_step box = solve_in_step_box(A, trials.system.g, trials.q);
+      const internal::Box_constrained_step box =
+        solve_in_step_box(A, trials.system.g, trials.q, trials.regions_held);
       report.step_in_box_converged = box.converged;
+      trials.refused = false;
       if(box.delta.allFinite() && try_step(box.delta, trials, report))
         m_lambda = (std::max)(m_lambda / 3., 1e-9);
+      else if(trials.refused && !trials.regions_held)
+        trials.regions_held = true;
       else if(!trials.negligible) // at a rest state the damping is not to blame: it would
         m_lambda = (std::min)(m_lambda * 8., 1e12); // only slow down the next phase's first steps
     }
@@ -804,17 +819,19 @@ private:
 
   // A dq = g for the step from `q`, with each dq_i in the box
   // [-step_limit(i), step_limit(i)] cut by the parameter's bounds (a box
-  // trust region), as internal::solve_in_box() finds it.
+  // trust region), as internal::solve_in_box() finds it; with
+  // `regions_held`, the blending-region parameters do not move.
   internal::Box_constrained_step solve_in_step_box(const Eigen::MatrixXd& A, const Eigen::VectorXd& g,
-                                                   const Eigen::VectorXd& q) const
+                                                   const Eigen::VectorXd& q, bool regions_held) const
   {
     const Eigen::Index n = A.rows();
     Eigen::VectorXd low(n), high(n), limit(n);
     for(Eigen::Index i = 0; i < n; ++i)
     {
       limit[i] = step_limit(std::size_t(i));
-      low[i] = (std::min)(0., (std::max)(-limit[i], lower_bound(std::size_t(i)) - q[i]));
-      high[i] = (std::max)(0., (std::min)(limit[i], upper_bound(std::size_t(i)) - q[i]));
+      const bool held = regions_held && m_model.is_blending_region_parameter(std::size_t(i));
+      low[i] = held ? 0. : (std::min)(0., (std::max)(-limit[i], lower_bound(std::size_t(i)) - q[i]));
+      high[i] = held ? 0. : (std::max)(0., (std::min)(limit[i], upper_bound(std::size_t(i)) - q[i]));
     }
     return internal::solve_in_box(A, g, low, high, limit);
   }
