@@ -480,7 +480,11 @@ void test_refused_region_moves(const Model<K>& truth)
   for(std::size_t i = 0; i < start.number_of_parameters(); ++i)
     regions_kept = regions_kept && (!start.is_blending_region_parameter(i) || q0[Eigen::Index(i)] == q1[Eigen::Index(i)]);
   BS_CHECK(regions_kept, "a region parameter moved although the model refuses it");
-  BS_CHECK(accepted >= 5 && after < 0.5 * before,
+  // Without holding the regions no step is accepted and the distance stays
+  // as it is, bit for bit; with them it falls (to 1 % on 1500 points; to 75 %
+  // on the 600 of the sanitizer build, whose rest state with the regions
+  // where the start put them is farther from the data).
+  BS_CHECK(accepted >= 5 && after < 0.9 * before,
            "refused region moves: " << accepted << " of 10 steps accepted, mean squared distance " << before
                                     << " -> " << after);
   std::cout << "  refused region moves: " << accepted << " of 10 steps accepted, mean squared distance " << before
