@@ -282,7 +282,9 @@ public:
   grows (Gauss-Newton, up to 8 tries; not at a rest state, which would only
   leave the next phase with needlessly damped first steps) or the time step
   halves (explicit, up to 12 tries) and it tries again; at most two trials of
-  a step get a closest-point sweep.
+  a step get a closest-point sweep. A Gauss-Newton proposal the model
+  refuses (a blending region out of its chart) holds the blending-region
+  parameters for the step's remaining tries instead of raising the damping.
   */
   Step_report step()
   {

@@ -116,7 +116,10 @@ inline Box_constrained_step solve_in_box(const Eigen::MatrixXd& A, const Eigen::
   Box_constrained_step step;
   step.delta = A.ldlt().solve(g);
   if(!step.delta.allFinite())
+  {
+    step.converged = false; // no step: the caller rejects it
     return step;
+  }
   Eigen::VectorXd& delta = step.delta;
   std::vector<bool> held(std::size_t(n), false);
   for(bool more = true; more;)
