@@ -34,16 +34,17 @@ inline double quadratic_model(const Eigen::MatrixXd& A, const Eigen::VectorXd& g
   return g.dot(dq) - 0.5 * dq.dot(A * dq);
 }
 
-// The stationary point of m in the components `free_indices`, the others
-// held where `x` has them: A_FF y = g_F - A_FH x_H.
-inline Eigen::VectorXd stationary_free_components(const Eigen::MatrixXd& A, const Eigen::VectorXd& g,
-                                                  const Eigen::VectorXd& x,
-                                                  const std::vector<Eigen::Index>& free_indices)
+// Sets the components of `x` that are not `held` to the stationary point
+// of m with the held ones where `x` has them: A_FF x_F = g_F - A_FH x_H.
+inline void solve_free_components(const Eigen::MatrixXd& A, const Eigen::VectorXd& g, const std::vector<bool>& held,
+                                  Eigen::VectorXd& x)
 {
-  const Eigen::Index n = A.rows(), m = Eigen::Index(free_indices.size());
-  std::vector<bool> held(std::size_t(n), true);
-  for(Eigen::Index i : free_indices)
-    held[std::size_t(i)] = false;
+  const Eigen::Index n = A.rows();
+  std::vector<Eigen::Index> free_indices;
+  for(Eigen::Index i = 0; i < n; ++i)
+    if(!held[std::size_t(i)])
+      free_indices.push_back(i);
+  const Eigen::Index m = Eigen::Index(free_indices.size());
   Eigen::MatrixXd A_free(m, m);
   Eigen::VectorXd rhs(m);
   for(Eigen::Index a = 0; a < m; ++a)
@@ -56,7 +57,9 @@ inline Eigen::VectorXd stationary_free_components(const Eigen::MatrixXd& A, cons
     for(Eigen::Index b = 0; b < m; ++b)
       A_free(a, b) = A(i, free_indices[std::size_t(b)]);
   }
-  return A_free.ldlt().solve(rhs);
+  const Eigen::VectorXd x_free = A_free.ldlt().solve(rhs);
+  for(Eigen::Index a = 0; a < m; ++a)
+    x[free_indices[std::size_t(a)]] = x_free[a];
 }
 
 // Projected Gauss-Seidel sweeps on m over the box, from `delta` (in the
@@ -122,27 +125,18 @@ inline Box_constrained_step solve_in_box(const Eigen::MatrixXd& A, const Eigen::
   }
   Eigen::VectorXd& delta = step.delta;
   std::vector<bool> held(std::size_t(n), false);
-  for(bool more = true; more;)
+  for(;;) // the held set only grows: at most n rounds
   {
-    more = false;
+    bool more = false;
     for(Eigen::Index i = 0; i < n; ++i)
       if(!held[std::size_t(i)] && (delta[i] < low[i] || delta[i] > high[i]))
       {
         held[std::size_t(i)] = more = true;
         delta[i] = delta[i] < low[i] ? low[i] : high[i];
       }
-    if(!more)
+    if(!more || std::find(held.begin(), held.end(), false) == held.end())
       break;
-    std::vector<Eigen::Index> free_indices;
-    for(Eigen::Index i = 0; i < n; ++i)
-      if(!held[std::size_t(i)])
-        free_indices.push_back(i);
-    const Eigen::Index m = Eigen::Index(free_indices.size());
-    if(m == 0)
-      break;
-    const Eigen::VectorXd delta_free = stationary_free_components(A, g, delta, free_indices);
-    for(Eigen::Index a = 0; a < m; ++a)
-      delta[free_indices[std::size_t(a)]] = delta_free[a];
+    solve_free_components(A, g, held, delta);
   }
   step.held = std::find(held.begin(), held.end(), true) != held.end();
   if(!step.held || !delta.allFinite())
