@@ -134,6 +134,9 @@ public:
     std::vector<std::size_t> nodes; ///< its nodes, in increasing order
     double flux = 0.;               ///< `f_i` (eq. 13)
     double area = 0.;               ///< its area
+    /// The area of its nodes that forces reach (not `Force_class::Untouched`):
+    /// the part of it that the data cover.
+    double covered_area = 0.;
   };
 
   /// A boundary curve between two regions: a connected set of edges of the
@@ -447,6 +450,8 @@ private:
       {
         r.flux += m_area[v] * m_force[v];
         r.area += m_area[v];
+        if(m_class[v] != Force_class::Untouched)
+          r.covered_area += m_area[v];
       }
   }
 

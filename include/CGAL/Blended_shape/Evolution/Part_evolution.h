@@ -189,7 +189,7 @@ until no split is kept:
 1. fit to rest (Deformable_model_fitter);
 2. the force analysis (Force_regions, equilibrated parts kept as regions)
    and up to `maximum_split_tries` split proposals (propose_split()), from
-   the boundary with the largest flux difference down;
+   the boundary with the largest flux difference down, one per pair of regions;
 3. for each proposal in turn: split (apply_split(), `h = 0`: no point of the
    surface moves), fit to rest, and keep the split if it pays for its
    parameters, otherwise restore the model exactly and try the next one;
@@ -383,8 +383,9 @@ public:
 
   /// The split proposals of the current model (which should be at rest):
   /// up to `maximum_split_tries`, from the boundaries of the force analysis
-  /// in decreasing order of their flux difference (boundaries that give no
-  /// valid region are skipped).
+  /// in decreasing order of their flux difference, one per pair of regions
+  /// (the curves between the same two regions give the same centre:
+  /// propose_split()); boundaries that give no valid region are skipped.
   std::vector<Split_proposal> propose_splits() const
   {
     const Model& model = m_fitter->model();
@@ -394,8 +395,19 @@ public:
                                             Equilibrated_regions::Kept);
     std::vector<Split_proposal> proposals;
     for(std::size_t b = 0; b < regions.boundaries().size() && proposals.size() < m_settings.maximum_split_tries; ++b)
+    {
+      // The curves between the same two regions give one proposal (the
+      // centre is the new part's region's, the ellipse is fitted to all of
+      // them): only the first is tried.
+      const auto& pair = regions.boundaries()[b].regions;
+      bool seen = false;
+      for(std::size_t a = 0; a < b && !seen; ++a)
+        seen = regions.boundaries()[a].regions == pair;
+      if(seen)
+        continue;
       if(const std::optional<Split_proposal> p = propose_split(regions, b))
         proposals.push_back(*p);
+    }
     return proposals;
   }
 

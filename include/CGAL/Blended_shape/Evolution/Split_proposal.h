@@ -36,32 +36,38 @@ struct Split_proposal
 
 namespace internal {
 
-// The node of region `part` nearest to the region's mean position (weighted
-// by the nodes' areas); nothing for a region of no area.
+// The node of region `part` nearest to the centre of its misfit: the mean
+// position of its nodes weighted by `A(v) |F(v)|` (their share of the flux,
+// eq. 13), among the nodes with a force (reached by forces, or glued to a
+// place that is). Nothing for a region that no force reaches.
 template <class GeomTraits>
 std::optional<std::size_t> middle_node(const Force_regions<GeomTraits>& regions, std::size_t part)
 {
   const auto& nodes = regions.regions()[part].nodes;
   const auto position = [&](std::size_t v) { return internal::to_eigen(regions.domain().node(v).position); };
   Eigen::Vector3d mean = Eigen::Vector3d::Zero();
-  double area = 0.;
+  double weight = 0.;
   for(std::size_t v : nodes)
   {
-    mean += regions.node_area(v) * position(v);
-    area += regions.node_area(v);
+    const double w = regions.node_area(v) * std::abs(regions.node_force(v)); // 0 where no force reaches
+    mean += w * position(v);
+    weight += w;
   }
-  if(!(area > 0.))
+  if(!(weight > 0.))
     return std::nullopt;
-  mean /= area;
-  std::size_t middle = nodes.front();
+  mean /= weight;
+  std::optional<std::size_t> middle;
   for(std::size_t v : nodes)
-    if((position(v) - mean).squaredNorm() < (position(middle) - mean).squaredNorm())
+    if(regions.node_force(v) != 0. &&
+       (!middle || (position(v) - mean).squaredNorm() < (position(*middle) - mean).squaredNorm()))
       middle = v;
   return middle;
 }
 
-// The second moments, about `centre`, of the midpoints of the boundary's
-// edges whose ends the centre's chart covers; nothing if fewer than three.
+// The second moments, about `centre`, of the midpoints of the edges between
+// the regions of boundary `b` (of all their curves: one region meets another
+// along several curves where a chart seam or an uncovered place cuts it)
+// whose ends the centre's chart covers; nothing if fewer than three.
 template <class GeomTraits>
 std::optional<Eigen::Matrix2d> curve_moments(const Force_regions<GeomTraits>& regions,
                                              const typename Force_regions<GeomTraits>::Boundary& b,
@@ -79,15 +85,17 @@ std::optional<Eigen::Matrix2d> curve_moments(const Force_regions<GeomTraits>& re
   };
   Eigen::Matrix2d moments = Eigen::Matrix2d::Zero();
   std::size_t count = 0;
-  for(const auto& e : b.edges)
-  {
-    Eigen::Vector2d x0, x1;
-    if(!in_chart(e[0], x0) || !in_chart(e[1], x1))
-      continue;
-    const Eigen::Vector2d d = 0.5 * (x0 + x1) - Eigen::Vector2d(centre.u.x, centre.u.y);
-    moments += d * d.transpose();
-    ++count;
-  }
+  for(const auto& curve : regions.boundaries())
+    if(curve.regions == b.regions)
+      for(const auto& e : curve.edges)
+      {
+        Eigen::Vector2d x0, x1;
+        if(!in_chart(e[0], x0) || !in_chart(e[1], x1))
+          continue;
+        const Eigen::Vector2d d = 0.5 * (x0 + x1) - Eigen::Vector2d(centre.u.x, centre.u.y);
+        moments += d * d.transpose();
+        ++count;
+      }
   if(count < 3)
     return std::nullopt;
   return Eigen::Matrix2d(moments / double(count));
@@ -119,14 +127,25 @@ The split along boundary curve `boundary` of `regions` (the best one, of
 the largest flux difference, by default), or nothing if no ellipse can be
 made of it. The paper leaves the details open; here:
 
-- <b>Side</b>: of the curve's two regions, the one of smaller area becomes
-  the new part (`new_part_region`): the protrusion or the dent, not the body.
-- <b>Centre and chart</b>: the node of the new part's region nearest to the
-  region's mean position (weighted by the nodes' areas): the middle of the
-  part on the surface, even when the curve around it crosses a chart seam.
-  The region goes in the chart of that node's canonical point.
+- <b>Side</b>: of the curve's two regions, the one that covers less of
+  the data becomes the new part (`new_part_region`): the protrusion or the
+  dent, not the body. The area compared is the covered area
+  (Force_regions::Region::covered_area, the nodes that forces reach): on a
+  single view the regions also grow over the unseen side, whose area says
+  nothing about the data.
+- <b>Centre and chart</b>: the node of the new part's region, among those
+  forces reach, nearest to the centre of the region's misfit: the mean
+  position of its nodes weighted by their share `A(v) |F(v)|` of the flux
+  (eq. 13). The new part starts as a copy of its base, so it moves only as
+  far as the data it is made of pull it: centred where the data lie
+  farthest from the model, it takes them; centred on the region's middle
+  by area, it can fall where no data are (the unseen side of one view, the
+  inside of a ring-shaped region) and feel no force at all. The region goes
+  in the chart of that node's canonical point.
 - <b>Radii and angle</b> (eq. 29): from the second moments, about the centre,
-  of the curve's edge midpoints that the chart covers (`to_chart()`): for
+  of the edge midpoints that the chart covers (`to_chart()`) of all the
+  curves between the same two regions (a chart seam or an uncovered place
+  cuts one border into several curves; the ellipse is fitted to it whole): for
   points spread evenly along an ellipse of radii `e_1, e_2` they are
   `e_1^2 / 2` and `e_2^2 / 2` along its axes, so `e_i = sqrt(2 lambda_i)`.
   They need not be exact: the fit moves and reshapes the region after the split.
@@ -150,7 +169,8 @@ std::optional<Split_proposal> propose_split(const Force_regions<GeomTraits>& reg
                             std::to_string(boundaries.size()) + ")");
   const auto& b = boundaries[boundary];
   const auto& all = regions.regions();
-  const std::size_t part = all[b.regions[0]].area <= all[b.regions[1]].area ? b.regions[0] : b.regions[1];
+  const std::size_t part =
+    all[b.regions[0]].covered_area <= all[b.regions[1]].covered_area ? b.regions[0] : b.regions[1];
   const std::optional<std::size_t> middle = internal::middle_node(regions, part);
   if(!middle)
     return std::nullopt;
@@ -161,7 +181,9 @@ std::optional<Split_proposal> propose_split(const Force_regions<GeomTraits>& reg
     return std::nullopt;
   const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> eigen(*moments); // eigenvalues increasing
   double e1 = std::sqrt(2. * (std::max)(eigen.eigenvalues()[1], 0.));
-  double e2 = std::sqrt(2. * (std::max)(eigen.eigenvalues()[0], 0.));
+  // A curve that is nearly straight where the chart sees it gives a sliver,
+  // which holds no data to pull the new part: at least a quarter as wide as long.
+  double e2 = (std::max)(std::sqrt(2. * (std::max)(eigen.eigenvalues()[0], 0.)), 0.25 * e1);
   if(!(e2 > 0.))
     return std::nullopt;
   const Eigen::Vector2d major = eigen.eigenvectors().col(1);
