@@ -142,6 +142,8 @@ inline bool solve_strip_coordinates(const Strip_segment& s, const Eigen::Vector2
     for(int ls = 0; ls < 30; ++ls, t *= 0.5)
     {
       const double nd = d + t * step.x(), ng = gamma + t * step.y();
+      if(nd == d && ng == gamma)
+        break; // the step no longer moves the point, nor would any shorter one
       const Eigen::Vector2d Fn = s.point(nd, ng) - u;
       const double rn = Fn.norm();
       if(rn < res)
