@@ -118,6 +118,36 @@ void test_sphere()
   BS_CHECK(std::abs(regions.noise() - noise) < 0.15 * noise,
            "measured noise " << regions.noise() << " for " << noise);
 
+  // One view (the forces of the points with z > 0 only): the regions grow
+  // over the unseen half, which their covered area leaves out. It equals a
+  // sum over the nodes that forces reach, and adds up to the seen half.
+  {
+    std::vector<BS::Normal_force> seen;
+    for(const BS::Normal_force& f : sphere_forces<K>(sphere, 30000, noise))
+      if(eig<K>(sphere.point(f.point)).z() > 0.)
+        seen.push_back(f);
+    const BS::Force_regions<K> one_view(domain, seen);
+    double covered = 0., total = 0.;
+    for(const auto& r : one_view.regions())
+    {
+      double brute = 0.;
+      for(std::size_t v : r.nodes)
+        brute += one_view.node_class(v) != BS::Force_class::Untouched ? one_view.node_area(v) : 0.;
+      BS_CHECK(std::abs(r.covered_area - brute) <= 1e-12 * r.area && r.covered_area <= r.area,
+               "covered area " << r.covered_area << " of a region of area " << r.area << ", by its nodes " << brute);
+      covered += r.covered_area;
+      total += r.area;
+    }
+    // The nodes reached are those of the faces the seen half's points land
+    // on: the half, and at most one edge's band (area 2 pi h) beyond the equator.
+    const double band = 2. * M_PI * domain.max_edge_length();
+    BS_CHECK(covered > 0.98 * 2. * M_PI && covered < 2. * M_PI + band && std::abs(total - 4. * M_PI) < 0.02 * 4. * M_PI,
+             "one view of the sphere: covered area " << covered << " (2 pi, plus at most " << band << "), area " << total
+                                                     << " (4 pi)");
+    std::cout << "  one view of the sphere: " << one_view.regions().size() << " regions, covered area " << covered
+              << ", area " << total << std::endl;
+  }
+
   // Two regions: x > 0 and x < 0, each across both charts (the seam is the equator).
   const auto& R = regions.regions();
   BS_CHECK(R.size() == 2, R.size() << " regions instead of 2");

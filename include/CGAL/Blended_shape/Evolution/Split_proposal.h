@@ -134,7 +134,8 @@ made of it. The paper leaves the details open; here:
   single view the regions also grow over the unseen side, whose area says
   nothing about the data.
 - <b>Centre and chart</b>: the node of the new part's region, among those
-  forces reach, nearest to the centre of the region's misfit: the mean
+  with a force (`Force_regions::node_force()` not 0), nearest to the
+  centre of the region's misfit: the mean
   position of its nodes weighted by their share `A(v) |F(v)|` of the flux
   (eq. 13). The new part starts as a copy of its base, so it moves only as
   far as the data it is made of pull it: centred where the data lie
