@@ -88,4 +88,10 @@ public:
   Point_3 point_and_jacobian(const CGAL::Blended_shapes::Chart_point& u, Jacobian& L) const;
   /// `x(u)` and `dx/du` with respect to `u`'s chart coordinates.
   Point_3 point_and_chart_jacobian(const CGAL::Blended_shapes::Chart_point& u, Chart_jacobian& D) const;
+  /// `canonical_surface_point(u, c)` and, where it is true, `x(c)` in `x` and
+  /// `dx/du` at `c` in `D`: the same values as the two calls, in one pass (the
+  /// closest-point search's step; a blended model locates the point in its blends once).
+  bool canonical_surface_point_and_chart_jacobian(const CGAL::Blended_shapes::Chart_point& u,
+                                                  CGAL::Blended_shapes::Chart_point& c, Point_3& x,
+                                                  Chart_jacobian& D) const;
 };

@@ -358,54 +358,10 @@ public:
   */
   std::optional<Shape_point> canonical_point(const Shape_point& p) const
   {
-    check_point(p);
-    const Component& k = m_components[p.component];
-    Shape_point q(p.component, k.shape().canonical_chart_point(p.u));
-    for(std::size_t b = 0; b < m_blends.size(); ++b)
-    {
-      const Blend& B = m_blends[b];
-      if(B.base_component() != q.component)
-        continue;
-      Chart_point v;
-      if(!k.shape().to_chart(q.u, B.base_region().chart(), v))
-        continue;
-      const Region_location loc = B.base_region().locate(Eigen::Vector2d(v.x, v.y));
-      if(loc.side == Region_side::Retained)
-        continue;
-      if(loc.side == Region_side::Discarded && !B.is_gradual())
-        return std::nullopt;
-      return Shape_point(q.component, v);
-    }
-    for(std::size_t b = 0; b < m_blends.size(); ++b)
-    {
-      const Blend& B = m_blends[b];
-      if(B.added_component() != q.component)
-        continue;
-      const bool tube = is_tube(q.component);
-      const Added_side& A = B.added_side();
-      Chart_point v;
-      if(!k.shape().to_chart(q.u, A.chart(tube), v))
-      {
-        // Not in the region's chart: outside an ellipse region, whose inside
-        // is all the added component keeps; a hole end's other disk is not its business.
-        if(A.kind() == Added_side::Ellipse)
-          return std::nullopt;
-        continue;
-      }
-      const Added_side::Location loc = A.locate(v, tube, B.core_stretch());
-      const Ellipse_blending_region& R = B.base_region();
-      if(loc.side == Region_side::Strip)
-        return base_point(B, R.strip_point(-loc.d, loc.theta));
-      if(loc.side == Region_side::Discarded)
-        return std::nullopt;
-      if(B.is_gradual())
-      {
-        if(!loc.has_core)
-          return std::nullopt; // outside the disk of a gradual blend: not on the surface
-        return base_point(B, R.core_point(loc.t, loc.theta, -1., B.core_stretch()));
-      }
-    }
-    return q;
+    const std::optional<Canonical_location> c = locate_canonical(p);
+    if(!c)
+      return std::nullopt;
+    return c->point;
   }
 
   /// Whether `p` is a point of the surface (not discarded).
@@ -452,7 +408,7 @@ public:
   /// per-component meshes that straddle a cut lie along the surface.
   Point_3 point(const Shape_point& p) const
   {
-    const std::optional<Shape_point> c = canonical_point(p);
+    const std::optional<Canonical_location> c = locate_canonical(p);
     if(c)
       return to_point(evaluate(*c, nullptr));
     if(const std::optional<Eigen::Vector3d> x = continuation(p))
@@ -464,7 +420,7 @@ public:
   /// representative of `p`. \throws std::invalid_argument if `p` is not on the surface.
   Point_3 point_and_jacobian(const Shape_point& p, Sparse_jacobian& J) const
   {
-    const std::optional<Shape_point> c = canonical_point(p);
+    const std::optional<Canonical_location> c = locate_canonical(p);
     if(!c)
       throw std::invalid_argument("Blended_shape::point_and_jacobian: the point is in a discarded part of the domain");
     J.clear();
@@ -497,11 +453,25 @@ public:
   Point_3 point_and_chart_jacobian(const Shape_point& p, Eigen::Matrix<double, 3, 2>& D,
                                    Shape_point* canonical = nullptr) const
   {
-    const std::optional<Shape_point> c = canonical_point(p);
-    if(!c)
+    Shape_point c;
+    const std::optional<Point_3> x = canonical_point_and_chart_jacobian(p, c, D);
+    if(!x)
       throw std::invalid_argument("Blended_shape::point_and_chart_jacobian: the point is in a discarded part of the domain");
     if(canonical)
-      *canonical = *c;
+      *canonical = c;
+    return *x;
+  }
+
+  /// canonical_point() in `canonical` and point_and_chart_jacobian() there,
+  /// locating the point in the blends once (the closest-point search's step);
+  /// nothing if `p` is not on the surface.
+  std::optional<Point_3> canonical_point_and_chart_jacobian(const Shape_point& p, Shape_point& canonical,
+                                                            Eigen::Matrix<double, 3, 2>& D) const
+  {
+    const std::optional<Canonical_location> c = locate_canonical(p);
+    if(!c)
+      return std::nullopt;
+    canonical = c->point;
     return to_point(evaluate(*c, nullptr, &D));
   }
 
@@ -511,7 +481,7 @@ public:
   /// loses rank.
   Vector_3 normal(const Shape_point& p) const
   {
-    const std::optional<Shape_point> c = canonical_point(p);
+    const std::optional<Canonical_location> c = locate_canonical(p);
     Eigen::Matrix<double, 3, 2> D;
     if(c)
       evaluate(*c, nullptr, &D);
@@ -1058,42 +1028,145 @@ private:
     return m_root_t[c] + m_root_R[c] * s;
   }
 
+  // A canonical point (canonical_point()) with what locating it learned: when
+  // `located`, the blend of its component whose base region holds it, with
+  // the point's location there, or no_blend if none does (it is on the
+  // retained side of all), so evaluate() need not locate it again.
+  struct Canonical_location
+  {
+    static constexpr std::size_t no_blend = std::size_t(-1);
+    Shape_point point;
+    bool located = false;
+    std::size_t blend = no_blend;
+    Region_location location = Region_location();
+  };
+
+  // canonical_point() (see there), with the location it found.
+  std::optional<Canonical_location> locate_canonical(const Shape_point& p) const
+  {
+    check_point(p);
+    // a point on another component (through beta): evaluate() locates it there
+    const auto unlocated = [](const std::optional<Shape_point>& c) -> std::optional<Canonical_location> {
+      if(!c)
+        return std::nullopt;
+      return Canonical_location{*c};
+    };
+    const Component& k = m_components[p.component];
+    Shape_point q(p.component, k.shape().canonical_chart_point(p.u));
+    for(std::size_t b = 0; b < m_blends.size(); ++b)
+    {
+      const Blend& B = m_blends[b];
+      if(B.base_component() != q.component)
+        continue;
+      Chart_point v;
+      if(!k.shape().to_chart(q.u, B.base_region().chart(), v))
+        continue;
+      const Region_location loc = B.base_region().locate(Eigen::Vector2d(v.x, v.y));
+      if(loc.side == Region_side::Retained)
+        continue;
+      if(loc.side == Region_side::Discarded && !B.is_gradual())
+        return std::nullopt;
+      return Canonical_location{Shape_point(q.component, v), true, b, loc};
+    }
+    for(std::size_t b = 0; b < m_blends.size(); ++b)
+    {
+      const Blend& B = m_blends[b];
+      if(B.added_component() != q.component)
+        continue;
+      const bool tube = is_tube(q.component);
+      const Added_side& A = B.added_side();
+      Chart_point v;
+      if(!k.shape().to_chart(q.u, A.chart(tube), v))
+      {
+        // Not in the region's chart: outside an ellipse region, whose inside
+        // is all the added component keeps; a hole end's other disk is not its business.
+        if(A.kind() == Added_side::Ellipse)
+          return std::nullopt;
+        continue;
+      }
+      const Added_side::Location loc = A.locate(v, tube, B.core_stretch());
+      const Ellipse_blending_region& R = B.base_region();
+      if(loc.side == Region_side::Strip)
+        return unlocated(base_point(B, R.strip_point(-loc.d, loc.theta)));
+      if(loc.side == Region_side::Discarded)
+        return std::nullopt;
+      if(B.is_gradual())
+      {
+        if(!loc.has_core)
+          return std::nullopt; // outside the disk of a gradual blend: not on the surface
+        return unlocated(base_point(B, R.core_point(loc.t, loc.theta, -1., B.core_stretch())));
+      }
+    }
+    return Canonical_location{q, true};
+  }
+
   // s at a canonical point (eq. 3), with the sparse Jacobian (eq. 10, 11) if
   // J, and with D its chart Jacobian (3 x 2, with respect to p's chart coordinates):
   //   ds/du = alpha ds1/du + (1 - alpha) ds2/du2 dbeta/du + (s1 - s2) dalpha/du.
   Eigen::Vector3d evaluate(const Shape_point& p, Sparse_jacobian* J, Eigen::Matrix<double, 3, 2>* D = nullptr) const
   {
+    return evaluate(Canonical_location{p}, J, D);
+  }
+
+  // The same at a canonical point with its location (locate_canonical()): a
+  // located point is not located again (eq. 3 needs the one blend whose
+  // base region holds it, and the point's location there).
+  Eigen::Vector3d evaluate(const Canonical_location& c, Sparse_jacobian* J, Eigen::Matrix<double, 3, 2>* D = nullptr) const
+  {
+    const Shape_point& p = c.point;
+    if(c.located)
+    {
+      if(c.blend != Canonical_location::no_blend)
+        if(const std::optional<Eigen::Vector3d> x =
+             evaluate_in_blend(p, c.blend, m_blends[c.blend].base_region().alpha_and_gradient(c.location), J, D))
+          return *x;
+      return place(p.component, p.u, J, 1., D);
+    }
     for(std::size_t b = 0; b < m_blends.size(); ++b)
     {
       const Blend& B = m_blends[b];
       if(B.base_component() != p.component || B.base_region().chart() != p.u.chart)
         continue;
-      const Eigen::Vector2d v(p.u.x, p.u.y);
-      Alpha_and_gradient<Ellipse_blending_region::Parameter_vector> A = B.base_region().alpha_and_gradient(v);
+      Alpha_and_gradient<Ellipse_blending_region::Parameter_vector> A =
+        B.base_region().alpha_and_gradient(Eigen::Vector2d(p.u.x, p.u.y));
       if(A.location.side == Region_side::Retained)
         continue;
-      // beta(u), its derivatives with respect to the region's parameters and
-      // to u, and the derivative of alpha with respect to u.
-      const std::optional<internal::Blend_correspondence> beta =
-        internal::blend_correspondence(B, is_tube(B.added_component()), v, A, J != nullptr, D != nullptr);
-      if(!beta)
-        break;
-      const double alpha = A.alpha;
-      Eigen::Matrix<double, 3, 2> D1, D2;
-      const Eigen::Vector3d x1 = place(p.component, p.u, J, alpha, D ? &D1 : nullptr);
-      const Eigen::Vector3d x2 = place(B.added_component(), beta->u2, J, 1. - alpha, (J || D) ? &D2 : nullptr);
-      if(J)
-      {
-        Jacobian_block blk;
-        blk.first_column = blend_offset(b);
-        blk.columns = (x1 - x2) * A.gradient.transpose() + (1. - alpha) * D2 * beta->du2_dq;
-        J->push_back(std::move(blk));
-      }
-      if(D)
-        *D = alpha * D1 + (1. - alpha) * D2 * beta->du2_du + (x1 - x2) * beta->dalpha_du;
-      return alpha * x1 + (1. - alpha) * x2;
+      if(const std::optional<Eigen::Vector3d> x = evaluate_in_blend(p, b, A, J, D))
+        return *x;
+      break;
     }
     return place(p.component, p.u, J, 1., D);
+  }
+
+  // s at point p of blend b's base region, not on its retained side, located
+  // by A there: alpha x1 + (1 - alpha) x2 (eq. 3); nothing if beta is not
+  // defined there (then s is p's own component point).
+  std::optional<Eigen::Vector3d> evaluate_in_blend(const Shape_point& p, std::size_t b,
+                                                   Alpha_and_gradient<Ellipse_blending_region::Parameter_vector> A,
+                                                   Sparse_jacobian* J, Eigen::Matrix<double, 3, 2>* D) const
+  {
+    const Blend& B = m_blends[b];
+    const Eigen::Vector2d v(p.u.x, p.u.y);
+    // beta(u), its derivatives with respect to the region's parameters and
+    // to u, and the derivative of alpha with respect to u.
+    const std::optional<internal::Blend_correspondence> beta =
+      internal::blend_correspondence(B, is_tube(B.added_component()), v, A, J != nullptr, D != nullptr);
+    if(!beta)
+      return std::nullopt;
+    const double alpha = A.alpha;
+    Eigen::Matrix<double, 3, 2> D1, D2;
+    const Eigen::Vector3d x1 = place(p.component, p.u, J, alpha, D ? &D1 : nullptr);
+    const Eigen::Vector3d x2 = place(B.added_component(), beta->u2, J, 1. - alpha, (J || D) ? &D2 : nullptr);
+    if(J)
+    {
+      Jacobian_block blk;
+      blk.first_column = blend_offset(b);
+      blk.columns = (x1 - x2) * A.gradient.transpose() + (1. - alpha) * D2 * beta->du2_dq;
+      J->push_back(std::move(blk));
+    }
+    if(D)
+      *D = alpha * D1 + (1. - alpha) * D2 * beta->du2_du + (x1 - x2) * beta->dalpha_du;
+    return alpha * x1 + (1. - alpha) * x2;
   }
 
   std::vector<Component> m_components;

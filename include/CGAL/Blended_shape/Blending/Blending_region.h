@@ -430,6 +430,17 @@ public:
   /// condition for the segment to hold `u` (convex hull property).
   bool segment_may_contain(std::size_t i, const Vector_2& u) const { return m_hull[i].contains(u, 1e-9 * m_scale); }
 
+  /// Whether `u` lies in the bounding box of the segments' hulls (the same
+  /// tolerance included): a necessary condition for `u` to be in the strip or
+  /// on the curve. Most points that the blended shape locates are far from a
+  /// given region: this one test settles them.
+  bool strip_box_may_contain(const Vector_2& u) const
+  {
+    const double eps = 1e-9 * m_scale;
+    return !(u.x() < m_strip_lo.x() - eps || u.y() < m_strip_lo.y() - eps || u.x() > m_strip_hi.x() + eps ||
+             u.y() > m_strip_hi.y() + eps);
+  }
+
   /*!
   Solves `C_i(d,gamma) = u` in segment `i` by Newton's method from the
   closest point of `kappa_{i(i+1)}` (eq. 25 as the first guess), with
@@ -451,6 +462,8 @@ public:
   {
     if(!u.allFinite())
       throw std::invalid_argument("Blending_region: the chart point to locate is not finite");
+    if(!strip_box_may_contain(u))
+      return std::nullopt;
     const std::size_t n = number_of_segments();
     std::optional<Strip_coordinates> near_miss;
     double near_miss_excess = std::numeric_limits<double>::infinity();
@@ -546,6 +559,8 @@ public:
   /// with the sign of orientation()). Ambiguous only for points on `kappa`.
   int winding_number(const Vector_2& u) const
   {
+    if(!strip_box_may_contain(u))
+      return 0; // outside the bounding box of the curve's control polygon
     int wn = 0;
     const double eps = 1e-14 * m_scale * m_scale;
     for(std::size_t i = 0; i < number_of_segments(); ++i)
@@ -901,7 +916,11 @@ private:
     check_no_folds();
     m_hull.resize(m_control.size());
     for(std::size_t i = 0; i < m_control.size(); ++i)
+    {
       m_hull[i] = internal::Segment_hull::of(segment(i));
+      m_strip_lo = (i == 0) ? m_hull[i].lo : m_strip_lo.cwiseMin(m_hull[i].lo);
+      m_strip_hi = (i == 0) ? m_hull[i].hi : m_strip_hi.cwiseMax(m_hull[i].hi);
+    }
   }
 
   // Sizes, finiteness and ranges of the data and constants.
@@ -1025,6 +1044,7 @@ private:
   std::vector<Vector_2> m_normal;        // n_i
   std::vector<Vector_2> m_middle_normal; // n_{i(i+1)}, eq. 23
   std::vector<internal::Segment_hull> m_hull; // the inverse's pre-test, one per segment
+  Vector_2 m_strip_lo, m_strip_hi;            // the bounding box of the hulls: of the strip and the curve
   double m_area = 0.;
   int m_orientation = 1;
   double m_scale = 1.;

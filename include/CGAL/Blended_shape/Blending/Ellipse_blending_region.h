@@ -425,8 +425,14 @@ public:
   /// `h` on an annulus).
   Alpha_and_gradient<Parameter_vector> alpha_and_gradient(const Vector_2& u) const
   {
+    return alpha_and_gradient(m_region->locate(u));
+  }
+
+  /// The same at a point already located (locate()), without locating it again.
+  Alpha_and_gradient<Parameter_vector> alpha_and_gradient(const Region_location& location) const
+  {
     Alpha_and_gradient<Parameter_vector> r;
-    r.location = m_region->locate(u);
+    r.location = location;
     r.alpha = m_region->alpha(r.location);
     r.gradient.setZero();
     const Blending_function::Derivatives D = m_region->blending_derivatives(r.location);

@@ -224,16 +224,20 @@ public:
   // stuck there by steps that leave the chart.
   void start_at(const Chart_point& start, const Eigen::Vector3d* start_point, const Chart_jacobian* start_jacobian)
   {
-    if(!m_model.canonical_surface_point(start, u))
+    const bool given = start_point != nullptr && start_jacobian != nullptr;
+    if(!(given ? m_model.canonical_surface_point(start, u) : eval_canonical(start, u, x, J)))
       throw std::invalid_argument("refine_closest_point: the start is not a point of the model's surface");
-    const bool moved = u.chart != start.chart || u.x != start.x || u.y != start.y;
-    if(start_point != nullptr && start_jacobian != nullptr && !moved)
+    if(given)
     {
-      x = *start_point;
-      J = *start_jacobian;
+      const bool moved = u.chart != start.chart || u.x != start.x || u.y != start.y;
+      if(!moved)
+      {
+        x = *start_point;
+        J = *start_jacobian;
+      }
+      else
+        x = eval(u, J);
     }
-    else
-      x = eval(u, J);
     d2 = (m_p - x).squaredNorm();
   }
 
@@ -268,6 +272,18 @@ private:
   {
     const auto xv = m_model.point_and_chart_jacobian(v, D);
     return Eigen::Vector3d(xv.x(), xv.y(), xv.z());
+  }
+
+  // The canonical point `v` of `w` with the model point `xv` and chart
+  // Jacobian `D` there, in one pass (the point is located once); false if
+  // `w` is not on the surface.
+  bool eval_canonical(const Chart_point& w, Chart_point& v, Eigen::Vector3d& xv, Chart_jacobian& D) const
+  {
+    typename Model::Point_3 x = CGAL::ORIGIN;
+    if(!m_model.canonical_surface_point_and_chart_jacobian(w, v, x, D))
+      return false;
+    xv = Eigen::Vector3d(x.x(), x.y(), x.z());
+    return true;
   }
 
   // One safeguarded Gauss-Newton step in the coordinates of chart point
@@ -319,12 +335,12 @@ private:
         for(int half = 0; half < halvings && (half < 4 || step.squaredNorm() >= 1e-14); ++half, step *= 0.5)
         {
           Chart_point v;
-          if(!m_model.canonical_surface_point(Chart_point(from.chart, from.x + step[0], from.y + step[1]), v))
+          Eigen::Vector3d xv; // with m_Jv, the Jacobian of the next step, if this one is kept
+          if(!eval_canonical(Chart_point(from.chart, from.x + step[0], from.y + step[1]), v, xv, m_Jv))
           {
             left_surface = true; // off the chart or into a discarded part of the domain
             continue;
           }
-          const Eigen::Vector3d xv = eval(v, m_Jv); // the Jacobian of the next step, if this one is kept
           const double dv = (m_p - xv).squaredNorm();
           if(dv < d2)
           {
@@ -364,10 +380,10 @@ private:
     {
       const Chart_point w(u.chart, u.x + (k == 0 ? h : 0.), u.y + (k == 1 ? h : 0.));
       Chart_point v;
+      Eigen::Vector3d xv;
       // the same chart: a canonical point elsewhere has other coordinates
-      if(!m_model.canonical_surface_point(w, v) || v.chart != w.chart || v.x != w.x || v.y != w.y)
+      if(!eval_canonical(w, v, xv, m_Jv) || v.chart != w.chart || v.x != w.x || v.y != w.y)
         return false;
-      eval(v, m_Jv);
       dJ[k] = (m_Jv - J) / h;
     }
     const Eigen::Vector3d r = m_p - x;
@@ -382,9 +398,9 @@ private:
     for(int half = 0; half < 2; ++half, step *= 0.5)
     {
       Chart_point v;
-      if(!m_model.canonical_surface_point(Chart_point(u.chart, u.x + step[0], u.y + step[1]), v))
+      Eigen::Vector3d xv;
+      if(!eval_canonical(Chart_point(u.chart, u.x + step[0], u.y + step[1]), v, xv, m_Jv))
         continue;
-      const Eigen::Vector3d xv = eval(v, m_Jv);
       const double dv = (m_p - xv).squaredNorm();
       if(dv < d2)
       {

@@ -185,6 +185,24 @@ public:
     canonical = chart_point(*c);
     return true;
   }
+  /// canonical_surface_point() and, where it is true, point_and_chart_jacobian()
+  /// at the canonical point in `x` and `D`, in one pass: the point is located
+  /// in the blends once (the closest-point search's step).
+  bool canonical_surface_point_and_chart_jacobian(const Chart_point& u, Chart_point& canonical, Point_3& x,
+                                                  Chart_jacobian& D) const
+  {
+    if(u.chart >= number_of_charts() || !chart_domain(u.chart).contains(u.x, u.y))
+      return false;
+    Shape_point c;
+    Chart_jacobian Ds;
+    const std::optional<Point_3> s = m_shape.canonical_point_and_chart_jacobian(shape_point(u), c, Ds);
+    if(!s)
+      return false;
+    canonical = chart_point(c);
+    D.noalias() = m_pose.R * Ds;
+    x = place(to_eigen(*s));
+    return true;
+  }
   /// The other chart points of the surface point at the canonical point `u`
   /// (Blended_shape::other_representatives()): where a closest-point
   /// projection that reached the discarded edge of a strip in `u`'s chart goes on.

@@ -147,6 +147,16 @@ public:
     canonical = canonical_chart_point(u);
     return true;
   }
+  /// canonical_surface_point() and, where it is true, point_and_chart_jacobian()
+  /// at the canonical point in `x` and `D` (see Deformable_blended_model).
+  bool canonical_surface_point_and_chart_jacobian(const Chart_point& u, Chart_point& canonical, Point_3& x,
+                                                  Chart_jacobian& D) const
+  {
+    if(!canonical_surface_point(u, canonical))
+      return false;
+    x = point_and_chart_jacobian(canonical, D);
+    return true;
+  }
   /// @}
 
   /// \name Evaluation

@@ -750,8 +750,11 @@ private:
       {
         Chart_point cu;
         const Chart_point& u = corr.u[k];
-        m_start_valid[k] = trial.canonical_surface_point(u, cu) && cu.chart == u.chart && cu.x == u.x && cu.y == u.y;
-        const Point_3 x = m_start_valid[k] ? trial.point_and_chart_jacobian(u, m_start_jacobians[k]) : trial.point(u);
+        Point_3 x = CGAL::ORIGIN;
+        m_start_valid[k] = trial.canonical_surface_point_and_chart_jacobian(u, cu, x, m_start_jacobians[k]) &&
+                           cu.chart == u.chart && cu.x == u.x && cu.y == u.y;
+        if(!m_start_valid[k])
+          x = trial.point(u);
         m_start_points[k] = Eigen::Vector3d(x.x(), x.y(), x.z());
         e += 0.5 * trials.system.w[k] * CGAL::square(corr.normal[k].dot(m_points[active[k]] - m_start_points[k]));
       }

@@ -115,53 +115,74 @@ inline double closest_curve_parameter(const Eigen::Vector2d& p0, const Eigen::Ve
   return g;
 }
 
-/// Solves `C_i(d, gamma) = u` in segment `s` by Newton's method from the
-/// closest point of the curve and the projected distance there (eq. 25),
-/// with backtracking so that the residual never grows; no range check on the
-/// result. Returns false unless the residual ends below `tolerance` (`u` far
-/// outside the segment's strip).
+/// Solves `C_i(d, gamma) = u` in segment `s` (eq. 24), with no range check
+/// on the result. `C_i(d, gamma) = K(gamma) + d N(gamma)` with the curve `K`
+/// and the normal blend `N`, both quadratic in `gamma`: `u` is on the line
+/// of `N(gamma)` through `K(gamma)` where `f(gamma) = (u - K) x N` vanishes,
+/// and then `d = (u - K) . N / |N|^2`. So the 2D inverse is a scalar root:
+/// Newton's method on `f` from the closest point of the curve (eq. 25), with
+/// backtracking so that `|f|` never grows, until the step no longer moves
+/// `gamma`. Returns false unless the residual `|C_i(d, gamma) - u|` ends below
+/// `tolerance` (`u` far outside the segment's strip).
 inline bool solve_strip_coordinates(const Strip_segment& s, const Eigen::Vector2d& u, double tolerance, double& d,
                                     double& gamma)
 {
-  const double g = closest_curve_parameter(s.k0, s.k1, s.k2, u);
-  const Eigen::Vector2d N = s.jacobian(0., g).col(0);
-  d = (u - bezier(s.k0, s.k1, s.k2, g)).dot(N) / N.squaredNorm();
-  gamma = g;
-
-  Eigen::Vector2d F = s.point(d, gamma) - u;
-  double res = F.norm();
-  for(int it = 0; it < 60 && res > 0.; ++it)
+  // K = k0 + 2 g bk + g^2 ak, N = n0 + 2 g bn + g^2 an (Bernstein to power basis)
+  const double akx = s.k0.x() - 2. * s.k1.x() + s.k2.x(), aky = s.k0.y() - 2. * s.k1.y() + s.k2.y();
+  const double bkx = s.k1.x() - s.k0.x(), bky = s.k1.y() - s.k0.y();
+  const double anx = s.n0.x() - 2. * s.n1.x() + s.n2.x(), any = s.n0.y() - 2. * s.n1.y() + s.n2.y();
+  const double bnx = s.n1.x() - s.n0.x(), bny = s.n1.y() - s.n0.y();
+  const double cx = u.x() - s.k0.x(), cy = u.y() - s.k0.y();
+  // f(g) and f'(g), with e = u - K and N at g
+  const auto f_at = [&](double g, double& ex, double& ey, double& nx, double& ny) {
+    ex = cx - g * (2. * bkx + g * akx);
+    ey = cy - g * (2. * bky + g * aky);
+    nx = s.n0.x() + g * (2. * bnx + g * anx);
+    ny = s.n0.y() + g * (2. * bny + g * any);
+    return ex * ny - ey * nx;
+  };
+  double g = closest_curve_parameter(s.k0, s.k1, s.k2, u);
+  double ex, ey, nx, ny;
+  double f = f_at(g, ex, ey, nx, ny);
+  for(int it = 0; it < 60 && f != 0.; ++it)
   {
-    const Eigen::Matrix2d A = s.jacobian(d, gamma);
-    const double det = det2(A);
-    if(!(std::abs(det) > 0.) || !std::isfinite(det))
+    const double kx = 2. * (bkx + g * akx), ky = 2. * (bky + g * aky); // K'
+    const double mx = 2. * (bnx + g * anx), my = 2. * (bny + g * any); // N'
+    const double fp = -(kx * ny - ky * nx) + (ex * my - ey * mx);
+    if(!(fp != 0.) || !std::isfinite(fp))
       return false;
-    const Eigen::Vector2d step = -solve_2x2(A, det, F);
+    const double step = -f / fp;
     double t = 1.;
     bool improved = false;
     for(int ls = 0; ls < 30; ++ls, t *= 0.5)
     {
-      const double nd = d + t * step.x(), ng = gamma + t * step.y();
-      if(nd == d && ng == gamma)
-        break; // the step no longer moves the point, nor would any shorter one
-      const Eigen::Vector2d Fn = s.point(nd, ng) - u;
-      const double rn = Fn.norm();
-      if(rn < res)
+      const double ng = g + t * step;
+      if(ng == g)
+        break; // the step no longer moves gamma, nor would any shorter one
+      double ex1, ey1, nx1, ny1;
+      const double fn = f_at(ng, ex1, ey1, nx1, ny1);
+      if(std::abs(fn) < std::abs(f))
       {
-        d = nd;
-        gamma = ng;
-        F = Fn;
-        res = rn;
+        g = ng;
+        f = fn;
+        ex = ex1; ey = ey1; nx = nx1; ny = ny1;
         improved = true;
         break;
       }
     }
     if(!improved)
       break; // at the rounding floor
-    if(!(std::abs(gamma) < 4.) || !(std::abs(d) < 1e3))
+    if(!(std::abs(g) < 4.))
       return false; // left the segment's neighbourhood: the point is elsewhere
   }
-  return res <= tolerance;
+  const double n2 = nx * nx + ny * ny;
+  if(!(n2 > 0.))
+    return false;
+  gamma = g;
+  d = (ex * nx + ey * ny) / n2;
+  if(!(std::abs(d) < 1e3))
+    return false;
+  return (s.point(d, gamma) - u).norm() <= tolerance;
 }
 
 } // namespace internal
