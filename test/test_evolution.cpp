@@ -898,10 +898,60 @@ void test_broken_down_robust_fit_not_returned()
             << " points for strays; the least-squares fit is returned" << std::endl;
 }
 
+// A proposal whose region meets an earlier split's region is shrunk about
+// its centre until the shape accepts it; one that already fits is kept as it
+// is; one centred where an earlier split cut the surface away is dropped.
+template <class K>
+void test_shrink_to_fit()
+{
+  typedef BS::Ellipse_blending_region Region;
+  BS::Blended_shape<K> shape(BS::Superquadric_ellipsoid<K>(1., 1., 1., 1., 1.));
+  shape.split(0, 0, Region::make_parameters(0., 0., 0.3, 0.3, 0.), 0.06);
+  BS::Split_proposal p;
+  p.component = 0;
+  p.chart = 0;
+  p.half_width = 0.06;
+  p.region = Region::make_parameters(0.55, 0., 0.3, 0.3, 0.); // meets the strip of the first split
+  bool refused = false;
+  try
+  {
+    BS::Blended_shape<K> copy = shape;
+    copy.split(p.component, p.chart, p.region, p.half_width);
+  }
+  catch(const std::invalid_argument&)
+  {
+    refused = true;
+  }
+  BS_CHECK(refused, "the overlapping proposal is not refused: the test does not test shrink_to_fit()");
+  const std::optional<BS::Split_proposal> shrunk = BS::shrink_to_fit(shape, p);
+  BS_CHECK(shrunk.has_value(), "shrink_to_fit(): no region accepted about a centre away from the first split");
+  if(shrunk)
+  {
+    BS_CHECK(shrunk->region[Region::E_U] == 0.55 && shrunk->region[Region::E_V] == 0., "the centre moved");
+    BS_CHECK(shrunk->region[Region::E_1] < 0.3 && shrunk->region[Region::E_1] >= 0.3 * 0.2401 &&
+               shrunk->region[Region::E_1] == shrunk->region[Region::E_2],
+             "radii " << shrunk->region[Region::E_1] << ", " << shrunk->region[Region::E_2]);
+    BS_CHECK(std::abs(shrunk->half_width / shrunk->region[Region::E_1] - 0.2) < 1e-12, "the strip is not shrunk with the radii");
+    BS::Blended_shape<K> copy = shape;
+    copy.split(shrunk->component, shrunk->chart, shrunk->region, shrunk->half_width); // throws if refused
+  }
+  BS::Split_proposal apart = p;
+  apart.region = Region::make_parameters(-0.6, 0.2, 0.15, 0.1, 0.3);
+  apart.half_width = 0.02;
+  const std::optional<BS::Split_proposal> kept = BS::shrink_to_fit(shape, apart);
+  BS_CHECK(kept && kept->region == apart.region && kept->half_width == apart.half_width,
+           "a proposal the shape accepts is changed");
+  BS::Split_proposal cut = p;
+  cut.region = Region::make_parameters(0., 0., 0.3, 0.3, 0.); // where the first split cut the surface away
+  BS_CHECK(!BS::shrink_to_fit(shape, cut), "a proposal inside an earlier split's region is accepted");
+  std::cout << "  shrink_to_fit: radius 0.3 -> " << (shrunk ? shrunk->region[Region::E_1] : 0.) << std::endl;
+}
+
 template <class K>
 void run_part_evolution(const char* kernel)
 {
   const int before = blended_shape_test::failures();
+  test_shrink_to_fit<K>();
   test_proposals_hold_data<K>();
   test_no_over_splitting<K>();
   test_remove_unpaid_parts<K>();

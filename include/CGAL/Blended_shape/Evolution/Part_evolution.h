@@ -385,7 +385,9 @@ public:
   /// up to `maximum_split_tries`, from the boundaries of the force analysis
   /// in decreasing order of their flux difference, one per pair of regions
   /// (the curves between the same two regions give the same centre:
-  /// propose_split()); boundaries that give no valid region are skipped.
+  /// propose_split()), each shrunk about its centre where the shape refuses
+  /// its region (shrink_to_fit()); boundaries that give no region the shape
+  /// accepts are skipped.
   std::vector<Split_proposal> propose_splits() const
   {
     const Model& model = m_fitter->model();
@@ -406,7 +408,8 @@ public:
       if(seen)
         continue;
       if(const std::optional<Split_proposal> p = propose_split(regions, b))
-        proposals.push_back(*p);
+        if(const std::optional<Split_proposal> fitted = shrink_to_fit(model.shape(), *p))
+          proposals.push_back(*fitted);
     }
     return proposals;
   }

@@ -225,6 +225,38 @@ Deformable_blended_model<GeomTraits> apply_split(const Deformable_blended_model<
   return Deformable_blended_model<GeomTraits>(shape, model.translation(), model.quaternion());
 }
 
+/*!
+\ingroup PkgBlendedShapeEvolution
+`proposal`, if `shape` accepts its split (Blended_shape::split()); otherwise
+the same ellipse shrunk about its centre (radii and strip half-width times
+0.7, up to four times: down to a quarter of its size) until the shape
+accepts it; nothing if it never does (e.g. a centre where another blend
+cuts the surface away). A proposal's region is fitted to the force
+regions' border, which does not know where earlier splits put their regions: on a model
+of several parts it often meets one of them, and the split is refused
+although a smaller region about the same centre (where the misfit is) is not.
+*/
+template <class GeomTraits>
+std::optional<Split_proposal> shrink_to_fit(const Blended_shape<GeomTraits>& shape, Split_proposal proposal)
+{
+  for(int k = 0; k <= 4; ++k)
+  {
+    try
+    {
+      Blended_shape<GeomTraits> split = shape;
+      split.split(proposal.component, proposal.chart, proposal.region, proposal.half_width);
+      return proposal;
+    }
+    catch(const std::invalid_argument&)
+    {
+      proposal.region[Ellipse_blending_region::E_1] *= 0.7;
+      proposal.region[Ellipse_blending_region::E_2] *= 0.7;
+      proposal.half_width *= 0.7;
+    }
+  }
+  return std::nullopt;
+}
+
 } // namespace Blended_shapes
 } // namespace CGAL
 
