@@ -197,6 +197,51 @@ void test_jacobians(const std::string& name, const Model<K>& m)
   BS_CHECK(worst_normal < 1e-9, name << ": normal not unit or not normal: " << worst_normal);
 }
 
+// canonical_surface_point_and_chart_jacobian() (one pass: the point is located
+// in the blends once) against canonical_surface_point() followed by
+// point_and_chart_jacobian() at the canonical point: the same answer, point
+// and chart Jacobian, to the bit, at chart points around the surface samples
+// (in strips, across chart seams, in discarded parts of the domain).
+template <class K>
+void test_one_pass_evaluation(const std::string& name, const Model<K>& m)
+{
+  const auto samples = BS::sample_model_surface(m, reduced ? 150 : 600, 7);
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> offset(-0.15, 0.15);
+  std::size_t on = 0, off = 0, moved = 0, differ = 0;
+  for(const auto& s : samples)
+    for(int k = 0; k < 4; ++k)
+    {
+      BS::Chart_point w = s.chart_point;
+      if(k > 0)
+      {
+        w.x += offset(rng);
+        w.y += offset(rng);
+      }
+      BS::Chart_point c1, c2;
+      typename Model<K>::Chart_jacobian D1, D2;
+      typename K::Point_3 x2 = CGAL::ORIGIN;
+      const bool b1 = m.canonical_surface_point(w, c1);
+      const bool b2 = m.canonical_surface_point_and_chart_jacobian(w, c2, x2, D2);
+      BS_CHECK(b1 == b2, name << ": on the surface or not: " << b1 << " vs " << b2);
+      if(!b1 || !b2)
+      {
+        ++off;
+        continue;
+      }
+      ++on;
+      moved += (c1.chart != w.chart || c1.x != w.x || c1.y != w.y);
+      BS_CHECK(c1.chart == c2.chart && c1.x == c2.x && c1.y == c2.y, name << ": another canonical point");
+      const typename K::Point_3 x1 = m.point_and_chart_jacobian(c1, D1);
+      if(!(x1 == x2) || !(D1.array() == D2.array()).all())
+        ++differ;
+    }
+  std::cout << "  " << name << ": one-pass evaluation at " << on << " surface points (" << moved
+            << " with another canonical point) and " << off << " off the surface; " << differ << " differ" << std::endl;
+  BS_CHECK(differ == 0, name << ": one-pass evaluation differs from the two calls at " << differ << " points");
+  BS_CHECK(moved > 0 && off > 0, name << ": the offsets reach no other chart or no discarded part");
+}
+
 // The fitter's forces (closest points found through the AABB tree over the
 // kept faces, refined on the surface) against brute force: the closest of
 // a dense set of surface samples, refined the same way.
@@ -534,6 +579,8 @@ void run(const char* kernel)
   const Model<K> nose = placed(body_with_nose<K>()), hole = placed(body_with_hole<K>());
   test_jacobians<K>("body with nose", nose);
   test_jacobians<K>("body with hole", hole);
+  test_one_pass_evaluation<K>("body with nose", nose);
+  test_one_pass_evaluation<K>("body with hole", hole);
   test_forces_against_brute_force<K>("body with nose", nose);
   test_forces_against_brute_force<K>("body with hole", hole);
   test_energy_decrease<K>("body with nose, Gauss-Newton", nose, BS::Integrator::Gauss_newton);
