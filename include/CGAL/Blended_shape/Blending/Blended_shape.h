@@ -1103,14 +1103,8 @@ private:
   // s at a canonical point (eq. 3), with the sparse Jacobian (eq. 10, 11) if
   // J, and with D its chart Jacobian (3 x 2, with respect to p's chart coordinates):
   //   ds/du = alpha ds1/du + (1 - alpha) ds2/du2 dbeta/du + (s1 - s2) dalpha/du.
-  Eigen::Vector3d evaluate(const Shape_point& p, Sparse_jacobian* J, Eigen::Matrix<double, 3, 2>* D = nullptr) const
-  {
-    return evaluate(Canonical_location{p}, J, D);
-  }
-
-  // The same at a canonical point with its location (locate_canonical()): a
-  // located point is not located again (eq. 3 needs the one blend whose
-  // base region holds it, and the point's location there).
+  // A point located by locate_canonical() is not located again (eq. 3 needs
+  // the one blend whose base region holds it, and the point's location there).
   Eigen::Vector3d evaluate(const Canonical_location& c, Sparse_jacobian* J, Eigen::Matrix<double, 3, 2>* D = nullptr) const
   {
     const Shape_point& p = c.point;

@@ -224,20 +224,15 @@ public:
   // stuck there by steps that leave the chart.
   void start_at(const Chart_point& start, const Eigen::Vector3d* start_point, const Chart_jacobian* start_jacobian)
   {
-    const bool given = start_point != nullptr && start_jacobian != nullptr;
-    if(!(given ? m_model.canonical_surface_point(start, u) : eval_canonical(start, u, x, J)))
-      throw std::invalid_argument("refine_closest_point: the start is not a point of the model's surface");
-    if(given)
+    // the given point and Jacobian are those of `start`: usable if it is canonical
+    if(start_point != nullptr && start_jacobian != nullptr && m_model.canonical_surface_point(start, u) &&
+       u.chart == start.chart && u.x == start.x && u.y == start.y)
     {
-      const bool moved = u.chart != start.chart || u.x != start.x || u.y != start.y;
-      if(!moved)
-      {
-        x = *start_point;
-        J = *start_jacobian;
-      }
-      else
-        x = eval(u, J);
+      x = *start_point;
+      J = *start_jacobian;
     }
+    else if(!eval_canonical(start, u, x, J))
+      throw std::invalid_argument("refine_closest_point: the start is not a point of the model's surface");
     d2 = (m_p - x).squaredNorm();
   }
 
@@ -267,12 +262,6 @@ private:
   };
   State state() const { return State{u, x, d2, J}; }
   void restore(const State& s) { u = s.u; x = s.x; d2 = s.d2; J = s.J; }
-
-  Eigen::Vector3d eval(const Chart_point& v, Chart_jacobian& D) const
-  {
-    const auto xv = m_model.point_and_chart_jacobian(v, D);
-    return Eigen::Vector3d(xv.x(), xv.y(), xv.z());
-  }
 
   // The canonical point `v` of `w` with the model point `xv` and chart
   // Jacobian `D` there, in one pass (the point is located once); false if

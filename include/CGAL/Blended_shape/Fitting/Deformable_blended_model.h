@@ -169,15 +169,14 @@ public:
   /// Whether `u` is in its chart's domain and on the surface (not in a discarded part of the domain).
   bool is_on_surface(const Chart_point& u) const
   {
-    return u.chart < number_of_charts() && chart_domain(u.chart).contains(u.x, u.y) &&
-           m_shape.is_on_surface(shape_point(u));
+    return in_chart_domain(u) && m_shape.is_on_surface(shape_point(u));
   }
   /// The canonical representative of `u` (Blended_shape::canonical_point()) in
   /// `canonical`, if `u` is in its chart's domain and on the surface;
   /// otherwise false.
   bool canonical_surface_point(const Chart_point& u, Chart_point& canonical) const
   {
-    if(u.chart >= number_of_charts() || !chart_domain(u.chart).contains(u.x, u.y))
+    if(!in_chart_domain(u))
       return false;
     const std::optional<Shape_point> c = m_shape.canonical_point(shape_point(u));
     if(!c)
@@ -191,7 +190,7 @@ public:
   bool canonical_surface_point_and_chart_jacobian(const Chart_point& u, Chart_point& canonical, Point_3& x,
                                                   Chart_jacobian& D) const
   {
-    if(u.chart >= number_of_charts() || !chart_domain(u.chart).contains(u.x, u.y))
+    if(!in_chart_domain(u))
       return false;
     Shape_point c;
     Chart_jacobian Ds;
@@ -278,6 +277,10 @@ public:
   /// @}
 
 private:
+  bool in_chart_domain(const Chart_point& u) const
+  {
+    return u.chart < number_of_charts() && chart_domain(u.chart).contains(u.x, u.y);
+  }
   static Eigen::Vector3d to_eigen(const Point_3& p)
   {
     return Eigen::Vector3d(CGAL::to_double(p.x()), CGAL::to_double(p.y()), CGAL::to_double(p.z()));

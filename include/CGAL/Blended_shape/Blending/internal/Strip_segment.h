@@ -15,12 +15,6 @@ namespace internal {
 /// The determinant of a 2 x 2 matrix.
 inline double det2(const Eigen::Matrix2d& A) { return A(0, 0) * A(1, 1) - A(0, 1) * A(1, 0); }
 
-/// The solution of `A x = b`, `det = det2(A)` nonzero.
-inline Eigen::Vector2d solve_2x2(const Eigen::Matrix2d& A, double det, const Eigen::Vector2d& b)
-{
-  return Eigen::Vector2d(A(1, 1) * b.x() - A(0, 1) * b.y(), -A(1, 0) * b.x() + A(0, 0) * b.y()) / det;
-}
-
 /// Segment `i` of a region's strip: the control points `k_i, k_{i(i+1)},
 /// k_{i+1}` of the curve and the normals `n_i, n_{i(i+1)}, n_{i+1}` (eq. 22,
 /// 23), by reference into the region's data. Scalar code: this is the inner
