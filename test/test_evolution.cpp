@@ -944,6 +944,32 @@ void test_shrink_to_fit()
   BS::Split_proposal cut = p;
   cut.region = Region::make_parameters(0., 0., 0.3, 0.3, 0.); // where the first split cut the surface away
   BS_CHECK(!BS::shrink_to_fit(shape, cut), "a proposal inside an earlier split's region is accepted");
+  // proposals that are not of this shape: a clear error, not "nothing"
+  auto not_of_shape = [&](BS::Split_proposal bad, const std::string& expected) {
+    try
+    {
+      BS::shrink_to_fit(shape, bad);
+    }
+    catch(const std::invalid_argument& e)
+    {
+      BS_CHECK(std::string(e.what()).find(expected) != std::string::npos,
+               "message \"" << e.what() << "\" does not say \"" << expected << "\"");
+      return;
+    }
+    BS_CHECK(false, "shrink_to_fit() accepted a proposal with " << expected);
+  };
+  BS::Split_proposal bad = apart;
+  bad.component = 7;
+  not_of_shape(bad, "no component 7");
+  bad = apart;
+  bad.chart = 5;
+  not_of_shape(bad, "has no chart 5");
+  bad = apart;
+  bad.region[Region::E_2] = std::nan("");
+  not_of_shape(bad, "positive and finite");
+  bad = apart;
+  bad.half_width = -0.01;
+  not_of_shape(bad, "positive and finite");
   std::cout << "  shrink_to_fit: radius 0.3 -> " << (shrunk ? shrunk->region[Region::E_1] : 0.) << std::endl;
 }
 

@@ -235,10 +235,24 @@ cuts the surface away). A proposal's region is fitted to the force
 regions' border, which does not know where earlier splits put their regions: on a model
 of several parts it often meets one of them, and the split is refused
 although a smaller region about the same centre (where the misfit is) is not.
+\throws std::invalid_argument if the proposal is not one of `shape`: no
+        such component or chart, radii or strip half-width not positive and
+        finite, or a centre or angle not finite (shrinking cannot mend these).
 */
 template <class GeomTraits>
 std::optional<Split_proposal> shrink_to_fit(const Blended_shape<GeomTraits>& shape, Split_proposal proposal)
 {
+  const auto refuse = [](const std::string& why) {
+    throw std::invalid_argument("shrink_to_fit: " + why + "; pass a proposal of this shape (propose_split())");
+  };
+  if(proposal.component >= shape.number_of_components())
+    refuse("no component " + std::to_string(proposal.component));
+  if(proposal.chart >= shape.component(proposal.component).shape().number_of_charts())
+    refuse("component " + std::to_string(proposal.component) + " has no chart " + std::to_string(proposal.chart));
+  const auto& q = proposal.region;
+  if(!q.allFinite() || !(q[Ellipse_blending_region::E_1] > 0.) || !(q[Ellipse_blending_region::E_2] > 0.) ||
+     !std::isfinite(proposal.half_width) || !(proposal.half_width > 0.))
+    refuse("the region's radii and strip half-width must be positive and finite, its centre and angle finite");
   for(int k = 0; k <= 4; ++k)
   {
     try
