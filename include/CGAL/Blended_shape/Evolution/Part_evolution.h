@@ -450,7 +450,8 @@ public:
       return false; // a region the shape refuses: nothing changed
     }
     ++m_version;
-    m_fitter->start_from_foot_points_of(*before);
+    m_fitter->start_from_foot_points_of(
+      *before, charts_moved_by_split(before->model(), m_fitter->model(), proposal.component));
     internal::notify_phase(visitor, Evolution_phase::Split_fit, m_fitter->model().shape().number_of_components());
     const Fitting_status status = fit_to_rest(visitor, callback);
     const double msd_after = mean_squared_distance();

@@ -227,6 +227,36 @@ Deformable_blended_model<GeomTraits> apply_split(const Deformable_blended_model<
 
 /*!
 \ingroup PkgBlendedShapeEvolution
+Where the points of `before` that a split moved to its new component are
+in `after`, for Deformable_model_fitter::start_from_foot_points_of(): one
+entry per chart of `before`, the chart of `after` that shows, at the same
+chart coordinates, what chart `g` showed; `std::size_t(-1)` where nothing
+moved. `after` is `before` with `component` split (apply_split()): its new
+component, the last, is a copy of `component` placed where it is, which
+keeps the inside of the region, so the same local chart of the copy has the
+same point at the same coordinates.
+\throws std::invalid_argument if `after` is not `before` with `component` split:
+        no such component, or not one more component with as many charts.
+*/
+template <class GeomTraits>
+std::vector<std::size_t> charts_moved_by_split(const Deformable_blended_model<GeomTraits>& before,
+                                               const Deformable_blended_model<GeomTraits>& after,
+                                               std::size_t component)
+{
+  const std::size_t copy = before.shape().number_of_components();
+  if(component >= copy || after.shape().number_of_components() != copy + 1 ||
+     after.number_of_charts() != before.number_of_charts() + after.shape().component(copy).shape().number_of_charts())
+    throw std::invalid_argument("charts_moved_by_split: the second model is not the first with component " +
+                                std::to_string(component) + " split; pass the model apply_split() returned");
+  std::vector<std::size_t> moved(before.number_of_charts(), std::size_t(-1));
+  for(std::size_t g = 0; g < moved.size(); ++g)
+    if(before.chart_component(g) == component)
+      moved[g] = after.chart_point(Shape_point(copy, Chart_point(before.local_chart(g), 0., 0.))).chart;
+  return moved;
+}
+
+/*!
+\ingroup PkgBlendedShapeEvolution
 `proposal`, if `shape` accepts its split (Blended_shape::split()); otherwise
 the same ellipse shrunk about its centre (radii and strip half-width times
 0.7, up to four times: down to a quarter of its size) until the shape

@@ -246,17 +246,50 @@ public:
   some, by as much as a split gains (measured: about 4 % of the energy of a
   mug scan). Without effect if `other` has no such sweep.
 
-  \throws std::invalid_argument if `other` has other points or more charts.
+  A foot point that is no longer on the surface may still be, at the same
+  chart coordinates, in another chart: `moved_to` (if not empty: one entry
+  per chart of `other`'s model) gives, for chart `g`, the chart of this
+  model to look in, or `std::size_t(-1)` for none. After
+  Blended_shape::split() these are the charts of the new component (a copy
+  of the split one, placed where it is) for the split component's charts:
+  the inside of the region moves to the copy, at the same chart points.
+  Without them, the foot points of the points there are searched for from
+  the tessellation again, and the split model starts farther from the
+  points than the model it was split from (measured on a mug scan: by 9 %
+  of the energy, more than the split could gain).
+
+  \throws std::invalid_argument if `other` has other points or more charts,
+          or `moved_to` has not one entry per chart of `other`'s model or names
+          a chart this model does not have.
   */
-  void start_from_foot_points_of(const Deformable_model_fitter& other)
+  void start_from_foot_points_of(const Deformable_model_fitter& other,
+                                 const std::vector<std::size_t>& moved_to = std::vector<std::size_t>())
   {
+    const std::string who = "Deformable_model_fitter::start_from_foot_points_of: ";
     if(other.m_points != m_points || other.m_model.number_of_charts() > m_model.number_of_charts())
-      throw std::invalid_argument("Deformable_model_fitter::start_from_foot_points_of: the fitters have other "
-                                  "points, or the other model has more charts; give the fitter this one's model "
-                                  "was split from");
+      throw std::invalid_argument(who + "the fitters have other points, or the other model has more charts; give "
+                                        "the fitter this one's model was split from");
+    if(!moved_to.empty() && moved_to.size() != other.m_model.number_of_charts())
+      throw std::invalid_argument(who + "moved_to has " + std::to_string(moved_to.size()) +
+                                  " entries; give one per chart of the other model (" +
+                                  std::to_string(other.m_model.number_of_charts()) + ")");
+    for(std::size_t g : moved_to)
+      if(g != std::size_t(-1) && g >= m_model.number_of_charts())
+        throw std::invalid_argument(who + "moved_to names chart " + std::to_string(g) + ", but the model has " +
+                                    std::to_string(m_model.number_of_charts()) + " charts");
     m_inherited.reset();
     if(other.m_correspondences_valid && other.m_correspondences_all)
+    {
       m_inherited = other.m_correspondences;
+      if(!moved_to.empty())
+        for(Chart_point& u : m_inherited->u)
+          if(moved_to[u.chart] != std::size_t(-1) && !m_model.is_on_surface(u))
+          {
+            const Chart_point there(moved_to[u.chart], u.x, u.y);
+            if(m_model.is_on_surface(there))
+              u = there;
+          }
+    }
     m_correspondences_valid = false;
   }
 
