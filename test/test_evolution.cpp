@@ -720,7 +720,8 @@ void test_split_model_fits_to_rest()
   // that closely and, on a mug scan, misses some by far), when the fitter is
   // told where the split moved them (charts_moved_by_split()), and the mean
   // squared distance is that before the split (1e-9 relatively, both ways).
-  // A map that is not of the two models is refused.
+  // A map that is not of the two models (wrong order, wrong size, a chart
+  // the model does not have) is refused.
   {
     const Model split_model = BS::apply_split(robust.model(), *proposal);
     const std::size_t copy = split_model.shape().number_of_components() - 1;
@@ -770,6 +771,18 @@ void test_split_model_fits_to_rest()
       refused = std::string(e.what()).find("moved_to has") != std::string::npos;
     }
     BS_CHECK(refused, "a moved_to of the wrong size was not refused");
+    refused = false;
+    try
+    {
+      std::vector<std::size_t> beyond = moved;
+      beyond.front() = split_model.number_of_charts();
+      inheriting.start_from_foot_points_of(robust, beyond);
+    }
+    catch(const std::invalid_argument& e)
+    {
+      refused = std::string(e.what()).find("moved_to names chart") != std::string::npos;
+    }
+    BS_CHECK(refused, "a moved_to naming a chart the model does not have was not refused");
   }
   BS::Fitting_status status;
   std::string error;
