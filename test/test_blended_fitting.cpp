@@ -201,14 +201,16 @@ void test_jacobians(const std::string& name, const Model<K>& m)
 // in the blends once) against canonical_surface_point() followed by
 // point_and_chart_jacobian() at the canonical point: the same answer, point
 // and chart Jacobian, to the bit, at chart points around the surface samples
-// (in strips, across chart seams, in discarded parts of the domain).
+// (in strips, across chart seams, in discarded parts of the domain); and
+// canonical_surface_point_chart_jacobian_and_normal()'s normal against
+// normal() where the point is its own canonical point, to the bit.
 template <class K>
 void test_one_pass_evaluation(const std::string& name, const Model<K>& m)
 {
   const auto samples = BS::sample_model_surface(m, reduced ? 150 : 600, 7);
   std::mt19937 rng(11);
   std::uniform_real_distribution<double> offset(-0.15, 0.15);
-  std::size_t on = 0, off = 0, moved = 0, differ = 0;
+  std::size_t on = 0, off = 0, moved = 0, differ = 0, normals = 0, normals_differ = 0;
   for(const auto& s : samples)
     for(int k = 0; k < 4; ++k)
     {
@@ -235,10 +237,29 @@ void test_one_pass_evaluation(const std::string& name, const Model<K>& m)
       const typename K::Point_3 x1 = m.point_and_chart_jacobian(c1, D1);
       if(!(x1 == x2) || !(D1.array() == D2.array()).all())
         ++differ;
+      // with the normal, which the closest-point search takes from here at
+      // its own canonical points: normal() there, to the bit
+      BS::Chart_point c3;
+      typename Model<K>::Chart_jacobian D3;
+      typename K::Point_3 x3 = CGAL::ORIGIN;
+      typename K::Vector_3 n3;
+      const bool b3 = m.canonical_surface_point_chart_jacobian_and_normal(w, c3, x3, D3, &n3);
+      if(!b3 || !(x3 == x2) || !(D3.array() == D2.array()).all())
+        ++differ;
+      if(c1.chart == w.chart && c1.x == w.x && c1.y == w.y)
+      {
+        const typename K::Vector_3 n1 = m.normal(c1);
+        ++normals;
+        if(!(n1.x() == n3.x() && n1.y() == n3.y() && n1.z() == n3.z()))
+          ++normals_differ;
+      }
     }
   std::cout << "  " << name << ": one-pass evaluation at " << on << " surface points (" << moved
-            << " with another canonical point) and " << off << " off the surface; " << differ << " differ" << std::endl;
+            << " with another canonical point) and " << off << " off the surface; " << differ << " differ; "
+            << normals_differ << " of " << normals << " normals differ" << std::endl;
   BS_CHECK(differ == 0, name << ": one-pass evaluation differs from the two calls at " << differ << " points");
+  BS_CHECK(normals > 0 && normals_differ == 0,
+           name << ": the one-pass normal differs from normal() at " << normals_differ << " of " << normals << " points");
   BS_CHECK(moved > 0 && off > 0, name << ": the offsets reach no other chart or no discarded part");
 }
 

@@ -24,6 +24,15 @@ searches only the mesh faces with a corner on the surface, and evaluates
 `point_and_jacobian()`, `point_and_chart_jacobian()` and `normal()` only at
 canonical points on the surface (`canonical_surface_point()`).
 
+Optional: a model may also have
+`bool canonical_surface_point_chart_jacobian_and_normal(u, c, x, D, Vector_3* n) const`,
+`canonical_surface_point_and_chart_jacobian()` that also gives, if `n` is
+not null, the normal at `c` from the same evaluation, exactly `normal(c)`
+where `u` is `c` itself. The closest-point search then takes the normals of
+the foot points from its own evaluations instead of calling `normal()`
+(`Deformable_blended_model` has it: its `normal()` locates the point in the
+blends again, which a superquadric's does not need).
+
 \cgalHasModelsBegin
 \cgalHasModels{CGAL::Blended_shapes::Deformable_model}
 \cgalHasModels{CGAL::Blended_shapes::Deformable_blended_model}

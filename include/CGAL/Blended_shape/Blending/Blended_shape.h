@@ -487,6 +487,14 @@ public:
       evaluate(*c, nullptr, &D);
     else
       place(p.component, p.u, nullptr, 1., &D);
+    return normal_of_chart_jacobian(D);
+  }
+
+  /// The unit normal of a chart Jacobian `D` (as normal() takes it from the
+  /// chart Jacobian at the canonical point): `D_x x D_y` normalized, 0 where
+  /// `D` loses rank.
+  static Vector_3 normal_of_chart_jacobian(const Eigen::Matrix<double, 3, 2>& D)
+  {
     const Eigen::Vector3d n = D.col(0).cross(D.col(1));
     const double len = n.norm();
     if(!(len > 0.) || !std::isfinite(len))

@@ -14,6 +14,8 @@
 #include <array>
 #include <cmath>
 #include <stdexcept>
+#include <type_traits>
+#include <utility>
 #include <vector>
 
 namespace CGAL {
@@ -199,12 +201,66 @@ private:
 
 namespace internal {
 
-/// A foot point: the chart point `u`, the model point `x(u)` and `|p - x(u)|^2`.
+/// A foot point: the chart point `u`, the model point `x(u)` and `|p - x(u)|^2`;
+/// with `has_normal`, the model's normal at `u` (as its normal() gives it).
 struct Foot_point
 {
   Chart_point u;
   Eigen::Vector3d x;
   double squared_distance;
+  bool has_normal = false;
+  Eigen::Vector3d normal = Eigen::Vector3d::Zero();
+};
+
+// Whether a model gives its normal with its chart Jacobian
+// (Deformable_blended_model::canonical_surface_point_chart_jacobian_and_normal()).
+template <class Model, class = void>
+struct Has_normal_with_chart_jacobian : std::false_type
+{};
+template <class Model>
+struct Has_normal_with_chart_jacobian<
+  Model, std::void_t<decltype(std::declval<const Model&>().canonical_surface_point_chart_jacobian_and_normal(
+           std::declval<const Chart_point&>(), std::declval<Chart_point&>(), std::declval<typename Model::Point_3&>(),
+           std::declval<typename Model::Chart_jacobian&>(), std::declval<typename Model::Vector_3*>()))>>
+  : std::true_type
+{};
+
+// The canonical point `v` of `w` on `model`, with the model point `x` and
+// the chart Jacobian `D` there, in one pass (the point is located once);
+// false if `w` is not on the surface. `has_normal`: whether `normal` is the
+// model's normal() at `v`, which a model that gives it with its chart
+// Jacobian (Has_normal_with_chart_jacobian) gives exactly where `w` is `v`
+// itself (elsewhere it may differ by rounding: not taken).
+template <class Model>
+bool evaluate_canonical(const Model& model, const Chart_point& w, Chart_point& v, Eigen::Vector3d& x,
+                        typename Model::Chart_jacobian& D, bool& has_normal, Eigen::Vector3d& normal)
+{
+  typename Model::Point_3 xm = CGAL::ORIGIN;
+  has_normal = false;
+  if constexpr(Has_normal_with_chart_jacobian<Model>::value)
+  {
+    typename Model::Vector_3 n;
+    if(!model.canonical_surface_point_chart_jacobian_and_normal(w, v, xm, D, &n))
+      return false;
+    has_normal = v.chart == w.chart && v.x == w.x && v.y == w.y;
+    normal = Eigen::Vector3d(n.x(), n.y(), n.z());
+  }
+  else if(!model.canonical_surface_point_and_chart_jacobian(w, v, xm, D))
+    return false;
+  x = Eigen::Vector3d(xm.x(), xm.y(), xm.z());
+  return true;
+}
+
+/// A start of refine_foot_point() evaluated by the caller: a canonical
+/// point of the surface with its model point `x`, chart Jacobian `J` and,
+/// with `has_normal`, its normal (as evaluate_canonical() gives them).
+template <class Model>
+struct Evaluated_start
+{
+  Eigen::Vector3d x;
+  typename Model::Chart_jacobian J;
+  bool has_normal = false;
+  Eigen::Vector3d normal;
 };
 
 // The state of refine_foot_point(): the current chart point `u`, model
@@ -221,17 +277,21 @@ public:
 
   // From the chart in which the start is canonical: a start on the rim of
   // its chart (a tessellation point near a chart seam) would otherwise be
-  // stuck there by steps that leave the chart.
-  void start_at(const Chart_point& start, const Eigen::Vector3d* start_point, const Chart_jacobian* start_jacobian)
+  // stuck there by steps that leave the chart. An evaluated start is
+  // canonical (see refine_foot_point()): taken as it is.
+  void start_at(const Chart_point& start, const Evaluated_start<Model>* evaluated)
   {
-    // the given point and Jacobian are those of `start`: usable if it is canonical
-    if(start_point != nullptr && start_jacobian != nullptr && m_model.canonical_surface_point(start, u) &&
-       u.chart == start.chart && u.x == start.x && u.y == start.y)
+    if(evaluated != nullptr)
     {
-      x = *start_point;
-      J = *start_jacobian;
+      u = start;
+      x = evaluated->x;
+      J = evaluated->J;
+      has_n = evaluated->has_normal;
+      n = evaluated->normal;
     }
-    else if(!eval_canonical(start, u, x, J))
+    else if(eval_canonical(start, u, x, J))
+      take_normal();
+    else
       throw std::invalid_argument("refine_closest_point: the start is not a point of the model's surface");
     d2 = (m_p - x).squaredNorm();
   }
@@ -249,7 +309,7 @@ public:
     return improved;
   }
 
-  Foot_point result() const { return Foot_point{u, x, d2}; }
+  Foot_point result() const { return Foot_point{u, x, d2, has_n, n}; }
   double squared_distance() const { return d2; }
 
 private:
@@ -259,20 +319,22 @@ private:
     Eigen::Vector3d x;
     double d2;
     Chart_jacobian J;
+    bool has_n;
+    Eigen::Vector3d n;
   };
-  State state() const { return State{u, x, d2, J}; }
-  void restore(const State& s) { u = s.u; x = s.x; d2 = s.d2; J = s.J; }
+  State state() const { return State{u, x, d2, J, has_n, n}; }
+  void restore(const State& s) { u = s.u; x = s.x; d2 = s.d2; J = s.J; has_n = s.has_n; n = s.n; }
 
-  // The canonical point `v` of `w` with the model point `xv` and chart
-  // Jacobian `D` there, in one pass (the point is located once); false if
-  // `w` is not on the surface.
-  bool eval_canonical(const Chart_point& w, Chart_point& v, Eigen::Vector3d& xv, Chart_jacobian& D) const
+  // evaluate_canonical(), its normal kept for take_normal().
+  bool eval_canonical(const Chart_point& w, Chart_point& v, Eigen::Vector3d& xv, Chart_jacobian& D)
   {
-    typename Model::Point_3 x = CGAL::ORIGIN;
-    if(!m_model.canonical_surface_point_and_chart_jacobian(w, v, x, D))
-      return false;
-    xv = Eigen::Vector3d(x.x(), x.y(), x.z());
-    return true;
+    return evaluate_canonical(m_model, w, v, xv, D, m_has_nv, m_nv);
+  }
+  // The normal of the last eval_canonical() becomes the current point's.
+  void take_normal()
+  {
+    has_n = m_has_nv;
+    n = m_nv;
   }
 
   // One safeguarded Gauss-Newton step in the coordinates of chart point
@@ -334,6 +396,7 @@ private:
           if(dv < d2)
           {
             u = v; x = xv; d2 = dv; J = m_Jv;
+            take_normal();
             return true;
           }
         }
@@ -394,6 +457,7 @@ private:
       if(dv < d2)
       {
         u = v; x = xv; d2 = dv; J = m_Jv;
+        take_normal();
         return true;
       }
     }
@@ -460,6 +524,10 @@ private:
   Eigen::Vector3d x;
   double d2 = 0.;
   Chart_jacobian J, m_Jv;
+  bool has_n = false; // whether `n` is the normal at `u`
+  Eigen::Vector3d n = Eigen::Vector3d::Zero();
+  bool m_has_nv = false; // the normal of the last eval_canonical(), see there
+  Eigen::Vector3d m_nv = Eigen::Vector3d::Zero();
   int m_iterations = 0;
 };
 
@@ -472,15 +540,17 @@ private:
 /// off by the square of the remaining tangential error), this saves the
 /// tail of the iteration, which converges only linearly away from the
 /// surface (at the rate distance x curvature).
-/// With `start_point` and `start_jacobian`, these are the model's point and
-/// chart Jacobian at `start` (saving their evaluation).
+/// With `evaluated`, the evaluation of `start`, which must be a canonical
+/// point of the surface (evaluate_canonical() returned it as its own
+/// canonical point): saving its evaluation and its location.
+/// The result has the model's normal where the search's evaluations gave it
+/// (evaluate_canonical()).
 template <class Model>
 Foot_point refine_foot_point(const Model& model, const Eigen::Vector3d& p, Chart_point start, int max_iterations,
-                             double relative_tolerance = 0., const Eigen::Vector3d* start_point = nullptr,
-                             const typename Model::Chart_jacobian* start_jacobian = nullptr)
+                             double relative_tolerance = 0., const Evaluated_start<Model>* evaluated = nullptr)
 {
   Foot_point_search<Model> search(model, p, relative_tolerance);
-  search.start_at(start, start_point, start_jacobian);
+  search.start_at(start, evaluated);
   for(int it = 0; it < max_iterations && search.squared_distance() > 0.; ++it)
     if(!search.iterate())
       break;

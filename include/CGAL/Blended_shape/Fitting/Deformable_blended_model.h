@@ -190,6 +190,16 @@ public:
   bool canonical_surface_point_and_chart_jacobian(const Chart_point& u, Chart_point& canonical, Point_3& x,
                                                   Chart_jacobian& D) const
   {
+    return canonical_surface_point_chart_jacobian_and_normal(u, canonical, x, D, nullptr);
+  }
+  /// canonical_surface_point_and_chart_jacobian() and, if `n` is not null,
+  /// the unit normal at the canonical point from the same evaluation: where
+  /// `u` is its own canonical point, exactly what normal() gives there (the
+  /// closest-point search takes its normals from here instead of locating
+  /// the foot point in the blends once more).
+  bool canonical_surface_point_chart_jacobian_and_normal(const Chart_point& u, Chart_point& canonical, Point_3& x,
+                                                         Chart_jacobian& D, Vector_3* n) const
+  {
     if(!in_chart_domain(u))
       return false;
     Shape_point c;
@@ -200,6 +210,8 @@ public:
     canonical = chart_point(c);
     D.noalias() = m_pose.R * Ds;
     x = place(to_eigen(*s));
+    if(n != nullptr)
+      *n = rotate(Shape_type::normal_of_chart_jacobian(Ds));
     return true;
   }
   /// The other chart points of the surface point at the canonical point `u`
@@ -222,13 +234,7 @@ public:
   Point_3 point(const Chart_point& u) const { return place(to_eigen(m_shape.point(shape_point(u)))); }
 
   /// The unit outward normal at `u`: `R` times the shape's normal.
-  Vector_3 normal(const Chart_point& u) const
-  {
-    const Vector_3 n = m_shape.normal(shape_point(u));
-    const Eigen::Vector3d r =
-      m_pose.R * Eigen::Vector3d(CGAL::to_double(n.x()), CGAL::to_double(n.y()), CGAL::to_double(n.z()));
-    return Vector_3(r[0], r[1], r[2]);
-  }
+  Vector_3 normal(const Chart_point& u) const { return rotate(m_shape.normal(shape_point(u))); }
 
   /// x(u) and its sparse Jacobian: blocks of consecutive columns of `L`
   /// (eq. 6, 10, 11): the pose, then the blocks of the shape (shifted by the pose's 7 columns).
@@ -289,6 +295,13 @@ private:
   {
     const Eigen::Vector3d x = m_pose.place(s);
     return Point_3(x[0], x[1], x[2]);
+  }
+  // A direction of the shape's frame in the model's: `R n`.
+  Vector_3 rotate(const Vector_3& n) const
+  {
+    const Eigen::Vector3d r =
+      m_pose.R * Eigen::Vector3d(CGAL::to_double(n.x()), CGAL::to_double(n.y()), CGAL::to_double(n.z()));
+    return Vector_3(r[0], r[1], r[2]);
   }
   void index_charts()
   {

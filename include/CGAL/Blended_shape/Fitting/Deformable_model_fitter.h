@@ -220,8 +220,7 @@ public:
     m_inherited.reset();
     m_scratch = Correspondences();
     m_correspondences_valid = m_correspondences_all = false;
-    m_start_points.clear();
-    m_start_jacobians.clear();
+    m_start.clear();
     m_start_valid.clear();
     m_use_all = true;
     m_active_parameters.assign(m_model.number_of_parameters(), true);
@@ -774,8 +773,7 @@ private:
     // closest-point sweep starts from these chart points
     // (where a blended model's regions moved, a chart point may have left
     // the surface or have another canonical point: then only the point)
-    m_start_points.resize(active.size());
-    m_start_jacobians.resize(active.size());
+    m_start.resize(active.size());
     m_start_valid.assign(active.size(), false);
     E1 += m_blocks.sum_over_blocks(active.size(), 0., [&](std::size_t first, std::size_t last) {
       double e = 0.;
@@ -783,13 +781,15 @@ private:
       {
         Chart_point cu;
         const Chart_point& u = corr.u[k];
-        Point_3 x = CGAL::ORIGIN;
-        m_start_valid[k] = trial.canonical_surface_point_and_chart_jacobian(u, cu, x, m_start_jacobians[k]) &&
+        internal::Evaluated_start<Model>& start = m_start[k];
+        m_start_valid[k] = internal::evaluate_canonical(trial, u, cu, start.x, start.J, start.has_normal, start.normal) &&
                            cu.chart == u.chart && cu.x == u.x && cu.y == u.y;
         if(!m_start_valid[k])
-          x = trial.point(u);
-        m_start_points[k] = Eigen::Vector3d(x.x(), x.y(), x.z());
-        e += 0.5 * trials.system.w[k] * CGAL::square(corr.normal[k].dot(m_points[active[k]] - m_start_points[k]));
+        {
+          const Point_3 x = trial.point(u);
+          start.x = Eigen::Vector3d(x.x(), x.y(), x.z());
+        }
+        e += 0.5 * trials.system.w[k] * CGAL::square(corr.normal[k].dot(m_points[active[k]] - start.x));
       }
       return e;
     });
@@ -1026,8 +1026,9 @@ private:
   // wins: the true energy of consecutive models is then measured
   // consistently, and a nearby foot point is not lost to a tessellation
   // artifact.
-  // With `evaluated`, m_start_points and m_start_jacobians hold the model's
-  // points and chart Jacobians at the previous chart points.
+  // With `evaluated`, m_start holds the model's points, chart Jacobians (and
+  // normals, where the model gives them) at the previous chart points
+  // (try_step()), and m_start_valid says where these are canonical.
   // With `search_everywhere` (and `previous`, which must then be the
   // correspondences of `model` itself: the recheck at rest, whose foot points
   // stand as they are), the tessellation's closest point is projected too,
@@ -1071,7 +1072,11 @@ private:
       internal::Foot_point foot;
       Located_point<Geom_traits> loc;
       bool kept_previous = false; // the foot point of `previous`, as it is
-      if(previous != nullptr && model.is_on_surface(previous->u[k]))
+      // A start evaluated by try_step() is known to be canonical on `model`,
+      // hence on its surface: locating it again (a blended model's costliest
+      // part of an evaluation) would only repeat that answer.
+      const bool start_evaluated = evaluated && m_start_valid[k];
+      if(previous != nullptr && (start_evaluated || model.is_on_surface(previous->u[k])))
       {
         if(search_everywhere) // `previous` is of `model` itself: its foot points stand
         {
@@ -1080,9 +1085,8 @@ private:
           kept_previous = true;
         }
         else
-          foot = (evaluated && m_start_valid[k])
-                   ? internal::refine_foot_point(model, p, previous->u[k], iterations, tolerance, &m_start_points[k],
-                                                 &m_start_jacobians[k])
+          foot = start_evaluated
+                   ? internal::refine_foot_point(model, p, previous->u[k], iterations, tolerance, &m_start[k])
                    : internal::refine_foot_point(model, p, previous->u[k], iterations, tolerance);
         // A closer tessellation point within a mesh spacing of the foot point
         // (in the same chart) leads back to the same foot point: only one
@@ -1134,8 +1138,13 @@ private:
         c.distance[k] = previous->distance[k];
         return;
       }
-      const Vector_3 nv = model.normal(foot.u);
-      c.normal[k] = Eigen::Vector3d(nv.x(), nv.y(), nv.z());
+      if(foot.has_normal) // the same as model.normal(foot.u), from the search's evaluation
+        c.normal[k] = foot.normal;
+      else
+      {
+        const Vector_3 nv = model.normal(foot.u);
+        c.normal[k] = Eigen::Vector3d(nv.x(), nv.y(), nv.z());
+      }
       c.distance[k] = std::sqrt(foot.squared_distance);
     });
     // The strays' volume: the ball of the points' diameter D (rotation-invariant,
@@ -1218,8 +1227,7 @@ private:
   std::vector<std::vector<bool>> m_kept_faces; // per chart mesh and face: searched (see position_meshes())
   std::unique_ptr<Closest_point_locator<Geom_traits>> m_locator;
   bool m_tree_outdated = false; // the meshes moved since the locator's tree was built
-  std::vector<Eigen::Vector3d> m_start_points;                     // see attach()
-  std::vector<typename Model::Chart_jacobian> m_start_jacobians;  // see attach()
+  std::vector<internal::Evaluated_start<Model>> m_start; // the trial's points at the chart points before it: see attach()
   std::vector<unsigned char> m_start_valid; // see attach(); not vector<bool>: written by several threads
   std::vector<std::size_t> m_all, m_subset;
   bool m_use_all = true;
