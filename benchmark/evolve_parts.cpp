@@ -6,7 +6,10 @@
 // the bounding-box diagonal before and after evolution, the result's (with
 // one part, the robust fit's, over its inliers), and the seconds.
 //
-//   evolve_parts [--threads N] [--meshes-only]
+//   evolve_parts [--threads N] [--evolution-points N] [--meshes-only]
+//
+// --evolution-points N: Evolution_settings::maximum_evolution_points (default
+// 4000; 0: evolution on all points).
 //
 // Data: the box/cylinder CAD object scanned from the default camera (the
 // paper's Figure 18 first row), the bundled real mug scan, an ellipsoid
@@ -69,9 +72,12 @@ std::vector<K::Point_3> mesh_scan(const std::string& file)
   return scan(m);
 }
 
+std::size_t evolution_points = BS::Evolution_settings().maximum_evolution_points; // --evolution-points
+
 void evolve(const std::string& name, const std::vector<K::Point_3>& points, std::size_t threads)
 {
-  const auto r = BS::fit_blended_shape(points, BS::parameters::number_of_threads(threads));
+  const auto r = BS::fit_blended_shape(
+    points, BS::parameters::maximum_evolution_points(evolution_points, BS::parameters::number_of_threads(threads)));
   // The least-squares RMS of evolution: before, that of its start; after,
   // that of the last split kept or part removed (the events measure both;
   // a removal is measured before the model is fitted to rest again).
@@ -125,9 +131,11 @@ int main(int argc, char** argv)
       threads = std::size_t(std::atoi(argv[++i]));
     else if(std::strcmp(argv[i], "--meshes-only") == 0)
       meshes_only = true;
+    else if(std::strcmp(argv[i], "--evolution-points") == 0 && i + 1 < argc && std::atoi(argv[i + 1]) >= 0)
+      evolution_points = std::size_t(std::atoi(argv[++i]));
     else
     {
-      std::cerr << "usage: evolve_parts [--threads N] [--meshes-only]\n";
+      std::cerr << "usage: evolve_parts [--threads N] [--evolution-points N] [--meshes-only]\n";
       return 2;
     }
   std::cout << blended_shape_benchmark::machine_description() << ", " << threads << " thread(s)\n\n";

@@ -7,7 +7,7 @@
 // evolution) and reported like Figure 18, with the paper's numbers beside
 // ours. Prints Markdown; --csv FILE also writes CSV.
 //
-//   reproduce_paper [--evolve] [--robust] [--threads N] [--csv FILE] [--markdown FILE]
+//   reproduce_paper [--evolve] [--evolution-points N] [--robust] [--threads N] [--csv FILE] [--markdown FILE]
 //
 // The fits use the paper's least squares (Robust_weighting::None): its data
 // have no strays, and the robust default may take a part of a multi-part
@@ -17,6 +17,8 @@
 // --evolve: fit_blended_shape() (its least-squares start and evolution; with
 // --robust a one-part result is the robust fit); the iteration / sweep and
 // Chamfer columns are then left empty (the model is not one superquadric).
+// --evolution-points N: Evolution_settings::maximum_evolution_points (default
+// 4000; 0: evolution on all points).
 //
 // "iteration / sweep" is the mean time of one iteration of the fit (all its
 // phases: the candidate fits on point subsets and the fit on all points) over
@@ -157,6 +159,7 @@ int main(int argc, char** argv)
   std::string csv, markdown;
   std::size_t threads = 1;
   bool robust = false, evolve = false;
+  std::size_t evolution_points = BS::Evolution_settings().maximum_evolution_points;
   for(int i = 1; i < argc; ++i)
   {
     if(std::strcmp(argv[i], "--csv") == 0 && i + 1 < argc) csv = argv[++i];
@@ -165,9 +168,11 @@ int main(int argc, char** argv)
     else if(std::strcmp(argv[i], "--threads") == 0 && i + 1 < argc && std::atoi(argv[i + 1]) >= 0)
       threads = std::size_t(std::atoi(argv[++i]));
     else if(std::strcmp(argv[i], "--markdown") == 0 && i + 1 < argc) markdown = argv[++i];
+    else if(std::strcmp(argv[i], "--evolution-points") == 0 && i + 1 < argc && std::atoi(argv[i + 1]) >= 0)
+      evolution_points = std::size_t(std::atoi(argv[++i]));
     else
     {
-      std::cerr << "usage: reproduce_paper [--evolve] [--robust] [--threads N] [--csv FILE] [--markdown FILE]\n";
+      std::cerr << "usage: reproduce_paper [--evolve] [--evolution-points N] [--robust] [--threads N] [--csv FILE] [--markdown FILE]\n";
       return 2;
     }
   }
@@ -221,7 +226,7 @@ int main(int argc, char** argv)
     const double diag = BS::testing::bounding_box_diagonal(e.points);
     if(evolve)
     {
-      const auto r = BS::fit_blended_shape(e.points, np);
+      const auto r = BS::fit_blended_shape(e.points, BS::parameters::maximum_evolution_points(evolution_points, np));
       f.metrics = r.metrics;
       f.parts = r.number_of_parts();
       f.holes = r.model.shape().holes().size();

@@ -653,6 +653,9 @@ void test_evolution_limits()
   bad = BS::Evolution_settings();
   bad.threshold_factor = -1.;
   refused(bad, "threshold_factor");
+  bad = BS::Evolution_settings();
+  bad.maximum_evolution_points = 10;
+  refused(bad, "maximum_evolution_points must be 0 (evolution on all points) or at least 100");
 }
 
 // A split model fitted to rest by least squares, from the robust fit of one
@@ -944,6 +947,81 @@ void test_structure_equivariance()
             << std::endl;
 }
 
+// Evolution on a sample (Evolution_settings::maximum_evolution_points) of
+// the body with a part (seed 2, 1500 points, two parts at most):
+// - a maximum of 0 (all points) or of the number of points changes nothing:
+//   the same bits as the default, which does not sample 1500 points;
+// - with a sample of 500 points the part is split off, the split test
+//   counts all the points in its description lengths, and the evolved model
+//   is fitted to rest on all of them (the figures are of all points);
+// - start_from_chart_points(): a fitter of the same points started from the
+//   foot points of a fitter at rest measures the same distances; a wrong
+//   number of chart points is refused.
+template <class K>
+void test_sampled_evolution()
+{
+  namespace BSP = BS::parameters;
+  const auto points = BS::testing::body_with_part_scan<K>(1500, 2);
+  const auto a = BS::fit_blended_shape(points, BSP::maximum_number_of_parts(std::size_t(2)));
+  for(std::size_t maximum : {std::size_t(0), points.size()})
+  {
+    const auto b = BS::fit_blended_shape(
+      points, BSP::maximum_evolution_points(maximum, BSP::maximum_number_of_parts(std::size_t(2))));
+    BS_CHECK(BS::testing::same_bits(a.model.parameters(), b.model.parameters()) && a.events.size() == b.events.size() &&
+               a.metrics.rms == b.metrics.rms,
+             "maximum_evolution_points(" << maximum << ") changed the result");
+  }
+  const auto c = BS::fit_blended_shape(
+    points, BSP::maximum_evolution_points(std::size_t(500), BSP::maximum_number_of_parts(std::size_t(2))));
+  const std::size_t fitted = points.size() - c.stray_points.size();
+  BS_CHECK(c.number_of_parts() == 2 && c.metrics.number_of_points == fitted && c.status.converged,
+           "evolution on 500 points: " << c.number_of_parts() << " parts, figures of " << c.metrics.number_of_points
+                                       << " points (" << fitted << " not isolated), converged " << c.status.converged);
+  for(const auto& e : c.events)
+  {
+    if(e.kind == BS::Evolution_event_kind::Remove)
+      continue;
+    // L = (n/2) ln(MSD) + (k/2) ln(n): the difference of two events' L
+    // before, at the same model, is 0; the split's gain in (n/2) ln(MSD)
+    // is that of all n points, not of the 500.
+    const double n = double(fitted);
+    const double gain = 0.5 * n * std::log(CGAL::square(e.rms_after / e.rms_before));
+    const double dL = e.description_length_after - e.description_length_before;
+    const double k_term = dL - gain; // (k_after - k_before)/2 ln(n): a whole number of parameters
+    const double k = 2. * k_term / std::log(n);
+    BS_CHECK(std::abs(k - std::round(k)) < 1e-6 && std::round(k) > 0.,
+             "evolution on 500 points: the split test does not count " << fitted << " points (parameters added: " << k
+                                                                         << ")");
+  }
+  typedef BS::Deformable_model_fitter<BS::Deformable_blended_model<K>> Fitter;
+  BS::Fitting_settings least_squares;
+  least_squares.robust_weighting = BS::Robust_weighting::None;
+  least_squares.subset_size = 0;
+  Fitter rest(points, c.model, least_squares);
+  rest.run();
+  std::vector<BS::Chart_point> starts;
+  for(const auto& f : rest.forces())
+    starts.push_back(f.chart_point);
+  Fitter started(points, rest.model(), least_squares);
+  started.start_from_chart_points(starts);
+  const double expected = rest.mean_squared_distance(true), measured = started.mean_squared_distance(true);
+  BS_CHECK(measured <= expected * (1. + 1e-9),
+           "start_from_chart_points: mean squared distance " << measured << " instead of " << expected);
+  starts.pop_back();
+  bool refused = false;
+  try
+  {
+    started.start_from_chart_points(starts);
+  }
+  catch(const std::invalid_argument& e)
+  {
+    refused = std::string(e.what()).find("one per point") != std::string::npos;
+  }
+  BS_CHECK(refused, "start_from_chart_points: one chart point too few not refused");
+  std::cout << "  evolution on 500 of " << points.size() << " points: " << c.number_of_parts() << " parts, RMS "
+            << c.metrics.rms << " (on all points: " << a.metrics.rms << ")" << std::endl;
+}
+
 // When evolution keeps no split and the robust fit of one superquadric
 // takes more than half of the points for strays, fit_blended_shape()
 // returns the least-squares fit, not that robust fit. On the body with a
@@ -1057,6 +1135,7 @@ void run_part_evolution(const char* kernel)
     test_split_model_fits_to_rest<K>();
     test_fit_blended_shape<K>();
     test_structure_equivariance<K>();
+    test_sampled_evolution<K>();
     test_broken_down_robust_fit_not_returned<K>();
   }
   std::cout << "part evolution with " << kernel << (blended_shape_test::failures() == before ? ": SUCCESS" : ": FAILED")

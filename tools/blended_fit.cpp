@@ -44,6 +44,8 @@ const char* usage =
   "                       file as read_blended_shape() reads, in the model's own frame)\n"
   "  --no-split           one superquadric: no part evolution\n"
   "  --max-parts N        at most N parts (default 8; 1 is --no-split)\n"
+  "  --evolution-points N decide the splits on at most N of the points (default 4000; 0:\n"
+  "                       all), then fit the final model to all of them\n"
   "  --trace DIR          write, as the fit goes, the model after each split tried (kept or\n"
   "                       undone) and each part removed, then the first fit and the final\n"
   "                       model, to DIR (created if missing): NN_KIND.ply (pieces coloured by\n"
@@ -229,12 +231,14 @@ private:
 int main(int argc, char** argv)
 {
   const auto options = tools::known_options({"--json", "--mesh", "--hierarchy", "--model", "--max-iterations", "--seed",
-                                              "--threads", "--strays", "--max-parts", "--trace"},
+                                              "--threads", "--strays", "--max-parts", "--trace",
+                                              "--evolution-points"},
                                              {"--no-split", "--no-holes", "--quiet", "--robust", "--no-robust", "--explicit"});
   return tools::run_tool("blended_fit", usage, argc, argv, options, [](const tools::Command_line& line) {
     std::string input, json, mesh, hierarchy, model_file, strays, trace;
     bool no_split = false, quiet = false, robust = true, explicit_integrator = false, max_parts_given = false;
     std::size_t iterations = 100, threads = 0, max_parts = BS::Evolution_settings().maximum_number_of_parts;
+    std::size_t evolution_points = BS::Evolution_settings().maximum_evolution_points;
     unsigned int seed = 0;
     for(const tools::Option& o : line.options)
     {
@@ -256,6 +260,13 @@ int main(int argc, char** argv)
         max_parts_given = true;
         if(max_parts == 0 || max_parts > 1000)
           throw tools::Usage_error("--max-parts must be in [1, 1000]");
+      }
+      else if(a == "--evolution-points")
+      {
+        evolution_points = std::size_t(tools::parse_integer(a, o.value));
+        if(evolution_points != 0 && evolution_points < BS::minimum_evolution_points)
+          throw tools::Usage_error("--evolution-points must be 0 (all points) or at least " +
+                                   std::to_string(BS::minimum_evolution_points));
       }
       else if(a == "--max-iterations")
       {
@@ -308,10 +319,11 @@ int main(int argc, char** argv)
     reporter.trace = trace;
     const Result result = BS::fit_blended_shape(
       points,
-      BS::parameters::maximum_number_of_parts(max_parts,
+      BS::parameters::maximum_evolution_points(evolution_points,
+        BS::parameters::maximum_number_of_parts(max_parts,
         BS::parameters::number_of_threads(threads,
         BS::parameters::robust_weighting(robust ? BS::Robust_weighting::Mixture : BS::Robust_weighting::None,
-        BS::parameters::integrator(explicit_integrator ? BS::Integrator::Explicit : BS::Integrator::Gauss_newton))))
+        BS::parameters::integrator(explicit_integrator ? BS::Integrator::Explicit : BS::Integrator::Gauss_newton)))))
         .number_of_iterations(iterations)
         .random_seed(seed)
         .visitor(reporter));

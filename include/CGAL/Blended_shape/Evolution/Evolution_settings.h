@@ -33,7 +33,18 @@ struct Evolution_settings
   double threshold_factor = 3.;
   /// The resolution of the chart meshes of the force analysis (Blended_shape_pieces).
   int analysis_resolution = 16;
+  /// fit_blended_shape() evolves the model on at most this many of the
+  /// points (every `k`-th point of those not isolated, in input order, `k`
+  /// the smallest that leaves no more), then fits the evolved model to rest
+  /// on all of them (0: evolution on all points; otherwise at least
+  /// minimum_evolution_points). Part_evolution itself uses the points it is given.
+  std::size_t maximum_evolution_points = 4000;
 };
+
+/// \ingroup PkgBlendedShapeEvolution
+/// The smallest nonzero Evolution_settings::maximum_evolution_points: a
+/// sample of fewer points says too little about parts to decide splits on.
+constexpr std::size_t minimum_evolution_points = 100;
 
 /// \ingroup PkgBlendedShapeEvolution
 /// \throws std::invalid_argument, with a message that starts with `who`, if
@@ -51,6 +62,10 @@ inline void check_evolution_settings(const Evolution_settings& s, const std::str
     throw std::invalid_argument(who + ": threshold_factor must be finite and > 0");
   if(s.analysis_resolution < 4)
     throw std::invalid_argument(who + ": analysis_resolution must be at least 4");
+  if(s.maximum_evolution_points != 0 && s.maximum_evolution_points < minimum_evolution_points)
+    throw std::invalid_argument(who + ": maximum_evolution_points must be 0 (evolution on all points) or at least " +
+                                std::to_string(minimum_evolution_points) + ", not " +
+                                std::to_string(s.maximum_evolution_points));
 }
 
 /// \ingroup PkgBlendedShapeEvolution

@@ -203,7 +203,7 @@ parameters is, up to terms that do not depend on the model,
 
   `L = (n/2) ln(MSD) + (k/2) ln(n)`,
 
-`n` the number of points, `MSD` their mean squared distance to the model
+`n` the number of points (described_points()), `MSD` their mean squared distance to the model
 at rest (as mean_squared_distance() measures it) (Rissanen's MDL, which coincides with the Bayesian information
 criterion). A split adds a component and a blend, about twenty parameters:
 it is kept only if `L` falls. On 10000 points it must lower the mean
@@ -285,6 +285,16 @@ public:
   const std::vector<std::size_t>& isolated_points() const { return m_isolated; }
   /// Fitting iterations done so far.
   std::size_t iterations() const { return m_iterations; }
+
+  /// The number of points `n` the description length counts (see the class
+  /// description): the points fitted, unless set_described_points() set it.
+  std::size_t described_points() const { return m_described_points > 0 ? m_described_points : m_kept.size(); }
+  /// Counts `n` points in the description length instead of the points
+  /// fitted (0: those), as when the points given are an even sample of `n`
+  /// (fit_blended_shape() with Evolution_settings::maximum_evolution_points):
+  /// a split must then lower the mean squared distance as much as on all of
+  /// them. Call it before run().
+  void set_described_points(std::size_t n) { m_described_points = n; }
 
   /// Fits the current model to rest; `callback` as for Deformable_model_fitter::run().
   template <class Visitor = Default_evolution_visitor>
@@ -535,7 +545,7 @@ private:
   // L of `model` at mean squared distance `msd`.
   double description_length_of(double msd, const Model& model) const
   {
-    const double n = double(m_kept.size());
+    const double n = double(described_points());
     // A floor far below any noise keeps the logarithm finite on exact data.
     return 0.5 * n * std::log((std::max)(msd, 1e-300)) + 0.5 * double(free_parameters(model)) * std::log(n);
   }
@@ -550,6 +560,7 @@ private:
   }
 
   Evolution_settings m_settings;
+  std::size_t m_described_points = 0;   // see set_described_points(); 0: the points fitted
   std::vector<Point_3> m_kept;          // the points fitted (not isolated)
   std::vector<std::size_t> m_isolated;  // indices of the others
   std::unique_ptr<Fitter> m_fitter;

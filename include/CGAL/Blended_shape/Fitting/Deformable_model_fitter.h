@@ -292,6 +292,31 @@ public:
     m_correspondences_valid = false;
   }
 
+  /*!
+  Starts the next sweep of all points from the chart points `starts` (one
+  per point, in the order of the points; e.g. the foot points of nearby
+  points in a fit of some of them): each projection starts there, and the
+  tessellation is searched only for closer points, as after a step. A
+  start that is not on the surface is searched for from the tessellation.
+  \throws std::invalid_argument if `starts` has not one entry per point or
+          names a chart the model does not have.
+  */
+  void start_from_chart_points(const std::vector<Chart_point>& starts)
+  {
+    const std::string who = "Deformable_model_fitter::start_from_chart_points: ";
+    if(starts.size() != m_points.size())
+      throw std::invalid_argument(who + std::to_string(starts.size()) + " chart points for " +
+                                  std::to_string(m_points.size()) + " points; give one per point");
+    for(const Chart_point& u : starts)
+      if(u.chart >= m_model.number_of_charts())
+        throw std::invalid_argument(who + "chart " + std::to_string(u.chart) + " named, but the model has " +
+                                    std::to_string(m_model.number_of_charts()) + " charts");
+    Correspondences c;
+    c.u = starts;
+    m_inherited = std::move(c);
+    m_correspondences_valid = false;
+  }
+
   /// Restricts the next steps to all points (`true`) or to the subset.
   void use_all_points(bool all) { m_use_all = all; }
   /// Lets only the pose (translation and rotation) move (`true`) or every parameter.
