@@ -25,6 +25,7 @@
 #include <cmath>
 #include <functional>
 #include <iostream>
+#include <limits>
 #include <map>
 #include <optional>
 #include <sstream>
@@ -958,6 +959,68 @@ void test_remove_refusals()
   }
 }
 
+// A fit may drive a blend's steepness w to its lower bound (a transition as
+// sharp as a cut): the surface must still evaluate there, on the region
+// curves too (d = 0), where alpha0 was 0 / 0 with the bound before (the
+// smallest positive double) and a fit's mesh vertices became NaN. For a
+// split (annulus) and for a gradual part (disk, h = 0.3).
+template <class K>
+void test_sharpest_blend()
+{
+  for(const bool gradual : {false, true})
+  {
+    Shape<K> s = sphere<K>();
+    if(gradual)
+    {
+      add_north_part(s, 0);
+      set_parameter(s, "b0.h", 0.3);
+    }
+    else
+      s.split(0, 0, Region::make_parameters(0.15, -0.1, 0.5, 0.42, 0.3, 0.9, 0.), 0.08);
+    const char* what = gradual ? "gradual part" : "split";
+    std::size_t w_index = 0;
+    while(s.parameter_name(w_index) != "b0.w")
+      ++w_index;
+    BS_CHECK(s.parameter_lower_bound(w_index) == BS::Blending_function::minimum_w,
+             what << ": the lower bound of w is " << s.parameter_lower_bound(w_index));
+    bool refused = false;
+    try
+    {
+      set_parameter(s, "b0.w", std::numeric_limits<double>::min());
+    }
+    catch(const std::invalid_argument&)
+    {
+      refused = true;
+    }
+    BS_CHECK(refused, what << ": w below its lower bound accepted");
+    set_parameter(s, "b0.w", BS::Blending_function::minimum_w);
+    // the two curves: the base region's, on the base, and the added side's, on the part
+    const auto& blend = s.blend(0);
+    const Region* added = &blend.added_side().ellipse_region();
+    const std::pair<std::size_t, const Region*> curves[2] = {{0, &blend.base_region()}, {1, added}};
+    std::size_t bad = 0, evaluated = 0;
+    for(const auto& [component, region] : curves)
+    {
+      for(int k = 0; k < 32; ++k)
+      {
+        const auto u = region->region().strip_point_at_theta(0., 2. * M_PI * k / 32.); // d = 0: on the curve
+        const BS::Shape_point p(component, BS::Chart_point(region->chart(), u.x(), u.y()));
+        if(!s.is_on_surface(p))
+          continue;
+        ++evaluated;
+        const auto X = s.point(p);
+        const auto n = s.normal(p);
+        const Eigen::MatrixXd J = s.dense_jacobian(p);
+        if(!(std::isfinite(X.x()) && std::isfinite(X.y()) && std::isfinite(X.z()) && std::isfinite(n.x()) &&
+             std::isfinite(n.y()) && std::isfinite(n.z()) && J.allFinite()))
+          ++bad;
+      }
+    }
+    BS_CHECK(evaluated >= 32 && bad == 0, what << ": " << bad << " of " << evaluated
+                                              << " points on the region curves do not evaluate at w = minimum_w");
+  }
+}
+
 // Every documented evolution error throws the documented type and leaves
 // the shape unchanged.
 template <class K>
@@ -1339,6 +1402,7 @@ void run(const char* kernel)
   test_remove_renumbering<K>();
   test_remove_refusals<K>();
   test_evolution_errors<K>();
+  test_sharpest_blend<K>();
   test_region_in_discarded_part<K>();
   test_part_on_a_part<K>();
   test_pieces<K>();

@@ -167,6 +167,25 @@ void test_blending_function()
   BS_CHECK(throws_invalid([&] { f.set_w(0.); }) && f.w() == 0.5, "set_w validates and keeps the old value");
   BS_CHECK(throws_invalid([&] { f.set_h(2.); }) && f.h() == 0.5, "set_h validates and keeps the old value");
   BS_CHECK(!throws_invalid([&] { F g(1., 1.); F g2(1e-6, 0.); }), "bounds w = 1, h = 1 accepted");
+
+  // The lower bound of w evaluates, on the curve (d = 0) too; below it
+  // (at the smallest positive double, the bound before) alpha0 is 0 / 0.
+  BS_CHECK(throws_invalid([&] { F g(0.5 * F::minimum_w, 0.); }) &&
+             throws_invalid([&] { F g(std::numeric_limits<double>::min(), 0.); }),
+           "w below minimum_w accepted");
+  BS_CHECK(std::isnan(F::alpha0(0., std::numeric_limits<double>::min())),
+           "alpha0 at the smallest positive w evaluates: minimum_w could be lower, say why it is not");
+  const double wmin = F::minimum_w;
+  for(double d : {0., 0.5 * wmin, -0.5 * wmin, wmin, -wmin, 0.5, -1.})
+    for(double h : {0., 0.5})
+    {
+      const F::Derivatives D = F(wmin, h).derivatives(d);
+      BS_CHECK(std::isfinite(D.alpha) && D.alpha >= h && D.alpha <= 1. && std::isfinite(D.d_d) &&
+                 std::isfinite(D.d_w) && std::isfinite(D.d_h),
+               "alpha or its derivatives at w = minimum_w, d = " << d << ": " << D.alpha << " " << D.d_d << " "
+                                                                 << D.d_w << " " << D.d_h);
+    }
+  BS_CHECK(F::alpha0(0., wmin) == 0.5, "alpha0(0) at w = minimum_w: " << F::alpha0(0., wmin));
 }
 
 // ---------------------------------------------------------------------------

@@ -25,7 +25,7 @@ coordinate `d` in [-1, 1] (App. A.1):
   maps the range of `alpha0` from [0, 1] to [h, 1]
   (`h = 1`: only the base shape is expressed).
 
-`w` in (0, 1] is the "steepness" (the transition covers
+`w` in [minimum_w, 1] is the "steepness" (the transition covers
 `|d| <= w`), `h` in [0, 1] the degree to which the base shape
 still covers the discarded part. Both are parameters of the blend
 (eq. 28, 29); all derivatives are analytic.
@@ -36,27 +36,34 @@ still covers the discarded part. Both are parameters of the blend
 class Blending_function
 {
 public:
-  /// \throws std::invalid_argument if `w` is not in (0, 1] or `h` not in [0, 1].
+  /// \throws std::invalid_argument if `w` is not in [minimum_w, 1] or `h` not in [0, 1].
   explicit Blending_function(double w = 1., double h = 0.)
   {
     set_w(w);
     set_h(h);
   }
 
+  /// The smallest steepness `w` (the paper's range is (0, 1]). A fit can
+  /// drive `w` to its bound (a transition as sharp as a cut), so the bound
+  /// must evaluate: below about 1e-77, `4 w^4` in the derivatives of eq. 15
+  /// is no longer a normal double, and at `w` = DBL_MIN `alpha0(0)` itself is
+  /// 0 / 0 (seen as a fit's NaN mesh vertices on a region curve).
+  static constexpr double minimum_w = 1e-60;
+
   /// The steepness `w`.
   double w() const { return m_w; }
   /// The blending parameter `h`.
   double h() const { return m_h; }
 
-  /// \throws std::invalid_argument if `w` is not a finite value in (0, 1].
+  /// \throws std::invalid_argument if `w` is not a finite value in [minimum_w, 1].
   void set_w(double w)
   {
-    if(!(w > 0. && w <= 1.))
+    if(!(w >= minimum_w && w <= 1.))
     {
       std::ostringstream msg;
       msg.precision(17);
-      msg << "Blending_function: steepness w = " << w
-          << " is not in (0, 1]; it is the half-width of the transition in strip units";
+      msg << "Blending_function: steepness w = " << w << " is not in [" << minimum_w
+          << ", 1]; it is the half-width of the transition in strip units";
       throw std::invalid_argument(msg.str());
     }
     m_w = w;
@@ -78,7 +85,7 @@ public:
   /// \name The base function, eq. 15
   /// These static forms do not validate their arguments (they are evaluated
   /// at every model point).
-  /// \pre `w > 0`
+  /// \pre `w >= minimum_w`
   /// @{
 
   /// `alpha0(d; w)`.

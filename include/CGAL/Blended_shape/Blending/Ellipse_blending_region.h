@@ -15,7 +15,6 @@
 #include <array>
 #include <cmath>
 #include <cstddef>
-#include <limits>
 #include <optional>
 #include <stdexcept>
 #include <string>
@@ -512,7 +511,7 @@ private:
       {"e_1", 1e-9, HUGE_VAL, 0.5, Parameter_kind::Length},
       {"e_2", 1e-9, HUGE_VAL, 0.5, Parameter_kind::Length},
       {"e_theta", -HUGE_VAL, HUGE_VAL, 0., Parameter_kind::Dimensionless},
-      {"w", std::numeric_limits<double>::min(), 1., 1., Parameter_kind::Dimensionless},
+      {"w", Blending_function::minimum_w, 1., 1., Parameter_kind::Dimensionless},
       {"h", 0., 1., 0., Parameter_kind::Dimensionless}}};
     return t;
   }
