@@ -12,20 +12,25 @@
 
 namespace blended_shape_test {
 
+// The index of the named parameter ("c1.a1", "b0.h", ...) of a Blended_shape.
+// \throws std::logic_error if there is no such parameter.
+template <class Shape>
+std::size_t parameter_index(const Shape& s, const std::string& name)
+{
+  for(std::size_t i = 0; i < s.number_of_parameters(); ++i)
+    if(s.parameter_name(i) == name)
+      return i;
+  throw std::logic_error("no parameter " + name);
+}
+
 // Sets one named parameter ("c1.a1", "b0.h", ...) of a Blended_shape through
 // set_parameters(). \throws std::logic_error if there is no such parameter.
 template <class Shape>
 void set_parameter(Shape& s, const std::string& name, double value)
 {
   Eigen::VectorXd q = s.parameters();
-  for(std::size_t i = 0; i < s.number_of_parameters(); ++i)
-    if(s.parameter_name(i) == name)
-    {
-      q[Eigen::Index(i)] = value;
-      s.set_parameters(q);
-      return;
-    }
-  throw std::logic_error("no parameter " + name);
+  q[Eigen::Index(parameter_index(s, name))] = value;
+  s.set_parameters(q);
 }
 
 // Moves and reshapes non-root component c a little (so that blends join

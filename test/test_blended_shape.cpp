@@ -38,6 +38,7 @@ namespace BS = CGAL::Blended_shapes;
 
 namespace {
 
+using blended_shape_test::parameter_index;
 using blended_shape_test::set_parameter;
 using blended_shape_test::perturb_component;
 
@@ -978,9 +979,7 @@ void test_sharpest_blend()
     else
       s.split(0, 0, Region::make_parameters(0.15, -0.1, 0.5, 0.42, 0.3, 0.9, 0.), 0.08);
     const char* what = gradual ? "gradual part" : "split";
-    std::size_t w_index = 0;
-    while(s.parameter_name(w_index) != "b0.w")
-      ++w_index;
+    const std::size_t w_index = parameter_index(s, "b0.w");
     BS_CHECK(s.parameter_lower_bound(w_index) == BS::Blending_function::minimum_w,
              what << ": the lower bound of w is " << s.parameter_lower_bound(w_index));
     bool refused = false;
