@@ -11,14 +11,17 @@
 // Part evolution (Part_evolution): single superquadrics stay one part, an
 // undone split restores the model bit for bit, the visitor hears of every
 // event, the abort callback and the part limit leave a valid model, bad
-// settings are refused. Both supported kernels. CTest runs the force
-// analysis as `test_evolution regions`, part evolution as `test_evolution parts`.
+// settings are refused. Both supported kernels. The crease segments of the
+// data (a cylinder on a box: the box and the cylinder; a superellipsoid: one).
+// CTest runs the force analysis as `test_evolution regions`, part evolution
+// as `test_evolution parts`, the crease segments as `test_evolution segments`.
 #include "test_kernels.h"
 #include "test_util.h"
 
 #include <CGAL/Blended_shape/Blending/Blended_shape.h>
 #include <CGAL/Blended_shape/Blending/Blended_shape_mesh.h>
 #include <CGAL/Blended_shape/Blending/Quotient_domain.h>
+#include <CGAL/Blended_shape/Evolution/Crease_segments.h>
 #include <CGAL/Blended_shape/Evolution/Force_regions.h>
 #include <CGAL/Blended_shape/Evolution/Part_evolution.h>
 #include <CGAL/Blended_shape/Evolution/Split_proposal.h>
@@ -38,6 +41,7 @@
 
 #include <Eigen/Geometry>
 
+#include <algorithm>
 #include <cmath>
 #include <iostream>
 #include <random>
@@ -1121,6 +1125,162 @@ void test_shrink_to_fit()
   std::cout << "  shrink_to_fit: radius 0.3 -> " << (shrunk ? shrunk->region[Region::E_1] : 0.) << std::endl;
 }
 
+// A cylinder standing on a box, sampled evenly (noise 0.2 % of the
+// diagonal): the concave crease runs around the cylinder's foot; the box's
+// and the cylinder's own edges are convex. `truth[i]` is 1 on the cylinder.
+void box_with_cylinder(std::vector<Eigen::Vector3d>& points, std::vector<Eigen::Vector3d>& outward,
+                       std::vector<int>& truth, std::mt19937& rng)
+{
+  std::uniform_real_distribution<double> u(-1., 1.);
+  std::normal_distribution<double> noise(0., 0.002 * std::sqrt(2. * 2. + 2. * 2. + 2. * 2.));
+  const double radius = 0.4, spacing = 0.035; // about one point per spacing^2
+  auto add = [&](const Eigen::Vector3d& p, const Eigen::Vector3d& n, int part) {
+    points.push_back(p + noise(rng) * n);
+    outward.push_back(n);
+    truth.push_back(part);
+  };
+  auto count = [&](double area) { return std::size_t(area / (spacing * spacing)); };
+  // the box [-1, 1]^2 x [-1, 0]: its top without the cylinder's foot, and its four sides
+  for(std::size_t k = 0, n = count(4. - CGAL_PI * radius * radius); k < n;)
+  {
+    const Eigen::Vector3d p(u(rng), u(rng), 0.);
+    if(p.head<2>().norm() > radius)
+    {
+      add(p, Eigen::Vector3d::UnitZ(), 0);
+      ++k;
+    }
+  }
+  for(int side = 0; side < 4; ++side)
+    for(std::size_t k = 0, n = count(2.); k < n; ++k)
+    {
+      const double s = u(rng), z = 0.5 * (u(rng) - 1.), sign = side < 2 ? 1. : -1.;
+      if(side % 2 == 0)
+        add(Eigen::Vector3d(sign, s, z), sign * Eigen::Vector3d::UnitX(), 0);
+      else
+        add(Eigen::Vector3d(s, sign, z), sign * Eigen::Vector3d::UnitY(), 0);
+    }
+  // the cylinder of radius 0.4 from z = 0 to 1: its side and its top
+  for(std::size_t k = 0, n = count(2. * CGAL_PI * radius); k < n; ++k)
+  {
+    const double a = CGAL_PI * u(rng), z = 0.5 * (u(rng) + 1.);
+    const Eigen::Vector3d normal(std::cos(a), std::sin(a), 0.);
+    add(Eigen::Vector3d(radius * normal.x(), radius * normal.y(), z), normal, 1);
+  }
+  for(std::size_t k = 0, n = count(CGAL_PI * radius * radius); k < n;)
+  {
+    const Eigen::Vector3d p(radius * u(rng), radius * u(rng), 1.);
+    if(p.head<2>().norm() <= radius)
+    {
+      add(p, Eigen::Vector3d::UnitZ(), 1);
+      ++k;
+    }
+  }
+}
+
+// crease_segments(): a cylinder on a box comes out as the box and the
+// cylinder (the concave crease at the cylinder's foot cuts, the convex edges
+// do not); with inward directions every convex edge becomes a crease; a
+// superellipsoid (convex everywhere) is one segment; the result does not
+// depend on anything but the input; bad input is refused.
+void test_crease_segments()
+{
+  std::mt19937 rng(7);
+  std::vector<Eigen::Vector3d> points, outward;
+  std::vector<int> truth;
+  box_with_cylinder(points, outward, truth, rng);
+  const std::size_t n = points.size();
+  const BS::Crease_segments s = BS::crease_segments(points, outward);
+  BS_CHECK(s.label.size() == n && s.size.size() >= 2, s.size.size() << " segments");
+  std::size_t sum = 0;
+  for(std::size_t m : s.size)
+    sum += m;
+  BS_CHECK(sum == n && std::is_sorted(s.size.rbegin(), s.size.rend()), "sizes do not count the points in decreasing order");
+  // the two largest segments are the box and the cylinder, each nearly pure
+  std::size_t in[2][2] = {{0, 0}, {0, 0}}; // [segment][truth]
+  for(std::size_t i = 0; i < n; ++i)
+    if(s.label[i] < 2)
+      ++in[s.label[i]][truth[i]];
+  const std::size_t box = std::size_t(std::count(truth.begin(), truth.end(), 0)), cylinder = n - box;
+  BS_CHECK(in[0][0] >= 0.98 * double(box) && in[0][1] <= 0.02 * double(cylinder),
+           "segment 0 holds " << in[0][0] << " of " << box << " box and " << in[0][1] << " of " << cylinder << " cylinder points");
+  BS_CHECK(in[1][1] >= 0.98 * double(cylinder) && in[1][0] <= 0.02 * double(box),
+           "segment 1 holds " << in[1][1] << " of " << cylinder << " cylinder and " << in[1][0] << " of " << box << " box points");
+  std::cout << "  crease segments of a cylinder on a box: " << s.size.size() << " segments, box " << in[0][0] << "/" << box
+            << ", cylinder " << in[1][1] << "/" << cylinder << std::endl;
+  // the same input gives the same segments
+  BS_CHECK(BS::crease_segments(points, outward).label == s.label, "not deterministic");
+  // inward directions turn convex into concave: the box's four sides and the
+  // cylinder's top part from the rest (the box's top and the cylinder's side,
+  // now joined at a convex fold: 6 of the 11.5 units of area of the box)
+  std::vector<Eigen::Vector3d> inward(outward);
+  for(Eigen::Vector3d& v : inward)
+    v = -v;
+  const BS::Crease_segments flipped = BS::crease_segments(points, inward);
+  BS_CHECK(flipped.size.size() >= 6 && flipped.size[0] < 0.6 * double(box),
+           "inward: " << flipped.size.size() << " segments, the largest " << (flipped.size.empty() ? 0 : flipped.size[0]));
+
+  // a superellipsoid with flat sides and rounded edges (a1, a2, a3 = 1, 0.8,
+  // 0.6, e1 = 0.3, e2 = 0.5): convex, one segment. Points: random directions
+  // scaled onto the surface F = 1; normals: the gradient of F.
+  auto F = [](const Eigen::Vector3d& x) {
+    const double e1 = 0.3, e2 = 0.5;
+    return std::pow(std::pow(std::abs(x.x()), 2. / e2) + std::pow(std::abs(x.y() / 0.8), 2. / e2), e2 / e1) +
+           std::pow(std::abs(x.z() / 0.6), 2. / e1);
+  };
+  std::vector<Eigen::Vector3d> blob, normals;
+  std::normal_distribution<double> gauss(0., 1.);
+  for(int k = 0; k < 6000; ++k)
+  {
+    const Eigen::Vector3d d = Eigen::Vector3d(gauss(rng), gauss(rng), gauss(rng)).normalized();
+    const Eigen::Vector3d p = std::pow(F(d), -0.15) * d; // F(r d) = r^(2 / e1) F(d)
+    Eigen::Vector3d g;
+    for(int a = 0; a < 3; ++a)
+    {
+      const Eigen::Vector3d h = 1e-6 * Eigen::Vector3d::Unit(a);
+      g[a] = F(p + h) - F(p - h);
+    }
+    blob.push_back(p);
+    normals.push_back(g.normalized());
+  }
+  const BS::Crease_segments one = BS::crease_segments(blob, normals);
+  BS_CHECK(one.size[0] >= 0.99 * double(blob.size()),
+           "superellipsoid: the largest of " << one.size.size() << " segments holds " << one.size[0] << " of " << blob.size());
+
+  // bad input
+  auto refused = [&](const std::vector<Eigen::Vector3d>& p, const std::vector<Eigen::Vector3d>& o,
+                     const BS::Crease_segment_settings& settings, const std::string& expected) {
+    try
+    {
+      BS::crease_segments(p, o, settings);
+    }
+    catch(const std::invalid_argument& e)
+    {
+      BS_CHECK(std::string(e.what()).find(expected) != std::string::npos,
+               "message \"" << e.what() << "\" does not say \"" << expected << "\"");
+      return;
+    }
+    BS_CHECK(false, "accepted: expected an error saying \"" << expected << "\"");
+  };
+  const BS::Crease_segment_settings defaults;
+  refused(points, std::vector<Eigen::Vector3d>(3), defaults, "one per point");
+  BS::Crease_segment_settings bad = defaults;
+  bad.neighbours = 0;
+  refused(points, outward, bad, "neighbours");
+  bad = defaults;
+  bad.crease_angle = std::nan("");
+  refused(points, outward, bad, "crease_angle");
+  bad = defaults;
+  bad.edge_factor = -1.;
+  refused(points, outward, bad, "edge_factor");
+  std::vector<Eigen::Vector3d> broken(points);
+  broken[5].x() = std::nan("");
+  refused(broken, outward, defaults, "point 5");
+  std::vector<Eigen::Vector3d> unoriented(outward);
+  unoriented[9] = Eigen::Vector3d::Zero();
+  refused(points, unoriented, defaults, "direction 9");
+  BS_CHECK(BS::crease_segments({}, {}).size.empty(), "no points: no segments");
+}
+
 template <class K>
 void run_part_evolution(const char* kernel)
 {
@@ -1167,15 +1327,17 @@ void run_force_regions(const char* kernel)
 int main(int argc, char** argv)
 {
   const std::string part = argc > 1 ? argv[1] : "all";
-  if(argc > 2 || (part != "all" && part != "regions" && part != "parts"))
+  if(argc > 2 || (part != "all" && part != "regions" && part != "parts" && part != "segments"))
   {
-    std::cerr << "usage: test_evolution [all|regions|parts]" << std::endl;
+    std::cerr << "usage: test_evolution [all|regions|parts|segments]" << std::endl;
     return EXIT_FAILURE;
   }
   if(part == "all" || part == "regions")
   {
     blended_shape_test::for_each_kernel([](auto kernel, const char* name) { run_force_regions<decltype(kernel)>(name); });
   }
+  if(part == "all" || part == "segments")
+    test_crease_segments(); // (no kernel: points as Eigen vectors)
   if(part == "all" || part == "parts")
   {
     blended_shape_test::for_each_kernel([](auto kernel, const char* name) { run_part_evolution<decltype(kernel)>(name); });
