@@ -4,7 +4,8 @@
 // against brute-force closest points on the analytic surface, the energy at
 // fixed correspondences across steps (both integrators), and the recovery of
 // a body with a part and of a torus-like body with a hole from noisy samples;
-// a fit going on after a split as a new fit would (restructure()).
+// a fit going on after a split as a new fit would (restructure()); held
+// parameters (hold_parameter()) kept by the fit.
 #include "test_util.h"
 #include "blended_shape_test_util.h"
 
@@ -592,6 +593,76 @@ void test_same_bits_at_any_number_of_threads(const Model<K>& truth)
             << " iterations, the same bits at 1 and 2" << std::endl;
 }
 
+// hold_parameter(): a held parameter is fixed while it is held. A gradual
+// part at h = 0.6 fits its data with h held (h keeps its bits, the distance
+// falls) and set_parameters() may not change it; released, the fit moves h.
+// A change of structure releases every hold; the structure's own fixed
+// parameters stay fixed when released; a wrong index is refused.
+template <class K>
+void test_held_parameter(const Model<K>& truth)
+{
+  using blended_shape_test::parameter_index;
+  double sigma, diagonal;
+  const auto pts = noisy_samples<K>(truth, reduced ? 600 : 1500, 0.002, 43, sigma, diagonal);
+  BS::Blended_shape<K> shape(BS::Superquadric_ellipsoid<K>(1., 0.9, 1.1, 0.8, 1.1));
+  shape.add_part(0, 1, Region::make_parameters(0., 0.05, 0.35, 0.33, 0., 0.9, 1.), 0.07,
+                 BS::Superquadric_ellipsoid<K>(0.4, 0.42, 0.8, 0.9, 1.), "superquadric_ellipsoid",
+                 Eigen::Vector3d(0.02, 0., -0.9), Eigen::Vector4d(1., 0.02, 0., 0.), 1,
+                 Region::make_parameters(0., 0., 0.8, 0.8, 0., 1., 0.), 0.1);
+  set_parameter(shape, "b0.h", 0.6);
+  const std::size_t h = parameter_index(shape, "b0.h");
+  BS_CHECK(!shape.is_fixed_parameter(h), "the h of a gradual blend is fixed before it is held");
+  shape.hold_parameter(h);
+  BS_CHECK(shape.is_fixed_parameter(h), "held, h is not fixed");
+  try
+  {
+    set_parameter(shape, "b0.h", 0.5);
+    BS_CHECK(false, "set_parameters() changed a held parameter");
+  }
+  catch(const std::invalid_argument&)
+  {
+  }
+  const std::size_t pose = Model<K>::number_of_pose_parameters;
+  auto fitted_h = [&](const BS::Blended_shape<K>& start, double& before, double& after) {
+    BS::Deformable_model_fitter<Model<K>> fitter(pts, Model<K>(start, truth.translation(), truth.quaternion()));
+    before = fitter.mean_squared_distance(true);
+    for(int it = 0; it < 10; ++it)
+      fitter.step();
+    after = fitter.mean_squared_distance(true);
+    return fitter.model().parameters()[Eigen::Index(pose + h)];
+  };
+  double before, after;
+  const double held_h = fitted_h(shape, before, after);
+  BS_CHECK(held_h == 0.6 && after < 0.5 * before,
+           "held: h " << held_h << " (was 0.6), mean squared distance " << before << " -> " << after);
+  shape.hold_parameter(h, false);
+  double released_before, released_after;
+  const double released_h = fitted_h(shape, released_before, released_after);
+  BS_CHECK(released_h < 0.5 && released_after < after,
+           "released: h " << released_h << ", mean squared distance " << released_before << " -> " << released_after);
+  std::cout << "  held h: stays 0.6, mean squared distance " << before << " -> " << after << "; released: h -> "
+            << released_h << ", distance " << released_after << std::endl;
+  // the structure's fixed parameters stay fixed; a change of structure releases holds
+  BS::Blended_shape<K> glued = body_with_nose<K>();
+  const std::size_t glued_h = parameter_index(glued, "b0.h");
+  BS_CHECK(glued.is_fixed_parameter(glued_h), "a finished blend's h is not fixed");
+  glued.hold_parameter(glued_h, false);
+  BS_CHECK(glued.is_fixed_parameter(glued_h), "released, a finished blend's h is no longer fixed");
+  const std::size_t a1 = parameter_index(glued, "c0.a1");
+  glued.hold_parameter(a1);
+  glued.split(0, 0, Region::make_parameters(0., 0., 0.3, 0.3, 0., 0.9, 0.), 0.05);
+  BS_CHECK(!glued.is_fixed_parameter(parameter_index(glued, "c0.a1")), "a hold survived a split");
+  try
+  {
+    glued.hold_parameter(glued.number_of_parameters());
+    BS_CHECK(false, "hold_parameter() accepted an index out of range");
+  }
+  catch(const std::out_of_range& e)
+  {
+    BS_CHECK(std::string(e.what()).find("out of range") != std::string::npos, e.what());
+  }
+}
+
 template <class K>
 void run(const char* kernel)
 {
@@ -611,6 +682,7 @@ void run(const char* kernel)
   test_recovery<K>("body with hole", hole, 0.5, false);
   test_restructure<K>(nose);
   test_refused_region_moves<K>(nose);
+  test_held_parameter<K>(nose);
   test_same_bits_at_any_number_of_threads<K>(nose);
   std::cout << "blended fitting with " << kernel
             << (blended_shape_test::failures() == before ? ": SUCCESS" : ": FAILED") << std::endl;

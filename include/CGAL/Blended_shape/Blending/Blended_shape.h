@@ -81,7 +81,8 @@ the region moves: without it the Jacobian is not the derivative of `s`.
 component its placement (3 + 4) then its shape parameters; then for every
 blend the seven region parameters `(e_u, e_v, e_1, e_2, e_theta, w, h)`.
 Some are held fixed (`is_fixed_parameter()`): `h` of annulus blends and
-`a4`, `a5` of a hole component in its Two_disks domain.
+`a4`, `a5` of a hole component in its Two_disks domain, and those a user
+holds (`hold_parameter()`).
 
 \tparam GeomTraits a CGAL kernel whose `FT` is `double`.
 */
@@ -315,13 +316,32 @@ public:
 
   /// Whether parameter `i` is held fixed: `h` of an annulus blend (cut and
   /// glue has `h = 0`, sec. 3.4), `a4`, `a5` of a hole in its Two_disks
-  /// domain (the two disks parameterize the hole only while it is closed).
-  /// Their Jacobian columns are zero.
+  /// domain (the two disks parameterize the hole only while it is closed),
+  /// and those held by hold_parameter(). Their Jacobian columns are zero.
   bool is_fixed_parameter(std::size_t i) const
   {
     if(i >= number_of_parameters())
       throw std::out_of_range("Blended_shape: parameter index " + std::to_string(i) + " out of range");
     return m_fixed[i];
+  }
+
+  /*!
+  Holds parameter `i` (`held` true) or releases it. A held parameter is
+  fixed (is_fixed_parameter(): its Jacobian column is zero and
+  set_parameters() must keep its value), so a fit leaves it as it is:
+  evolution holds the `h` of a gradual blend while it lowers `h` in stages
+  (Part_evolution). To move a held parameter, release it, set it, hold it
+  again. Parameters the structure fixes (above) stay fixed when released.
+  Every change of structure (split(), add_part(), add_hole(),
+  remove_component(), ...: the parameters are numbered anew) releases all.
+  \throws std::out_of_range if `i` is not a parameter index.
+  */
+  void hold_parameter(std::size_t i, bool held = true)
+  {
+    if(i >= number_of_parameters())
+      throw std::out_of_range("Blended_shape::hold_parameter: parameter index " + std::to_string(i) +
+                              " out of range (" + std::to_string(number_of_parameters()) + " parameters)");
+    m_fixed[i] = held || compute_fixed(i);
   }
 
 private:
