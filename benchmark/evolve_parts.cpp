@@ -6,10 +6,11 @@
 // the bounding-box diagonal before and after evolution, the result's (with
 // one part, the robust fit's, over its inliers), and the seconds.
 //
-//   evolve_parts [--threads N] [--evolution-points N] [--meshes-only]
+//   evolve_parts [--threads N] [--evolution-points N] [--splits forces|creases|both] [--meshes-only]
 //
 // --evolution-points N: Evolution_settings::maximum_evolution_points (default
-// 4000; 0: evolution on all points).
+// 4000; 0: evolution on all points). --splits: Evolution_settings::split_source
+// (default forces).
 //
 // Data: the box/cylinder CAD object scanned from the default camera (the
 // paper's Figure 18 first row), the bundled real mug scan, an ellipsoid
@@ -37,6 +38,7 @@
 #include <cmath>
 #include <cstdlib>
 #include <cstring>
+#include <optional>
 #include <iomanip>
 #include <iostream>
 #include <random>
@@ -73,11 +75,14 @@ std::vector<K::Point_3> mesh_scan(const std::string& file)
 }
 
 std::size_t evolution_points = BS::Evolution_settings().maximum_evolution_points; // --evolution-points
+BS::Split_source split_source = BS::Evolution_settings().split_source;             // --splits
 
 void evolve(const std::string& name, const std::vector<K::Point_3>& points, std::size_t threads)
 {
   const auto r = BS::fit_blended_shape(
-    points, BS::parameters::maximum_evolution_points(evolution_points, BS::parameters::number_of_threads(threads)));
+    points, BS::parameters::split_source(
+              split_source, BS::parameters::maximum_evolution_points(evolution_points,
+                                                                     BS::parameters::number_of_threads(threads))));
   // The least-squares RMS of evolution: before, that of its start; after,
   // that of the last split kept or part removed (the events measure both;
   // a removal is measured before the model is fitted to rest again).
@@ -127,18 +132,27 @@ int main(int argc, char** argv)
   std::size_t threads = 1;
   bool meshes_only = false;
   for(int i = 1; i < argc; ++i)
+  {
+    std::optional<BS::Split_source> source;
     if(std::strcmp(argv[i], "--threads") == 0 && i + 1 < argc)
       threads = std::size_t(std::atoi(argv[++i]));
     else if(std::strcmp(argv[i], "--meshes-only") == 0)
       meshes_only = true;
     else if(std::strcmp(argv[i], "--evolution-points") == 0 && i + 1 < argc && std::atoi(argv[i + 1]) >= 0)
       evolution_points = std::size_t(std::atoi(argv[++i]));
+    else if(std::strcmp(argv[i], "--splits") == 0 && i + 1 < argc && (source = BS::split_source_from_name(argv[i + 1])))
+    {
+      split_source = *source;
+      ++i;
+    }
     else
     {
-      std::cerr << "usage: evolve_parts [--threads N] [--evolution-points N] [--meshes-only]\n";
+      std::cerr << "usage: evolve_parts [--threads N] [--evolution-points N] [--splits forces|creases|both] [--meshes-only]\n";
       return 2;
     }
-  std::cout << blended_shape_benchmark::machine_description() << ", " << threads << " thread(s)\n\n";
+  }
+  std::cout << blended_shape_benchmark::machine_description() << ", " << threads << " thread(s), splits from "
+            << BS::split_source_name(split_source) << "\n\n";
   const char* header = "| data | points | least-squares RMS/diag % before | after | parts | result RMS/diag % | events | "
                        "iterations | seconds |\n"
                        "|---|---:|---:|---:|---:|---:|---|---:|---:|\n";

@@ -7,7 +7,8 @@
 // evolution) and reported like Figure 18, with the paper's numbers beside
 // ours. Prints Markdown; --csv FILE also writes CSV.
 //
-//   reproduce_paper [--evolve] [--evolution-points N] [--robust] [--threads N] [--csv FILE] [--markdown FILE]
+//   reproduce_paper [--evolve] [--splits forces|creases|both] [--evolution-points N] [--robust] [--threads N]
+//                   [--csv FILE] [--markdown FILE]
 //
 // The fits use the paper's least squares (Robust_weighting::None): its data
 // have no strays, and the robust default may take a part of a multi-part
@@ -18,7 +19,8 @@
 // --robust a one-part result is the robust fit); the iteration / sweep and
 // Chamfer columns are then left empty (the model is not one superquadric).
 // --evolution-points N: Evolution_settings::maximum_evolution_points (default
-// 4000; 0: evolution on all points).
+// 4000; 0: evolution on all points). --splits: Evolution_settings::split_source
+// (default forces).
 //
 // "iteration / sweep" is the mean time of one iteration of the fit (all its
 // phases: the candidate fits on point subsets and the fit on all points) over
@@ -160,8 +162,10 @@ int main(int argc, char** argv)
   std::size_t threads = 1;
   bool robust = false, evolve = false;
   std::size_t evolution_points = BS::Evolution_settings().maximum_evolution_points;
+  BS::Split_source split_source = BS::Evolution_settings().split_source;
   for(int i = 1; i < argc; ++i)
   {
+    std::optional<BS::Split_source> source;
     if(std::strcmp(argv[i], "--csv") == 0 && i + 1 < argc) csv = argv[++i];
     else if(std::strcmp(argv[i], "--robust") == 0) robust = true;
     else if(std::strcmp(argv[i], "--evolve") == 0) evolve = true;
@@ -170,9 +174,15 @@ int main(int argc, char** argv)
     else if(std::strcmp(argv[i], "--markdown") == 0 && i + 1 < argc) markdown = argv[++i];
     else if(std::strcmp(argv[i], "--evolution-points") == 0 && i + 1 < argc && std::atoi(argv[i + 1]) >= 0)
       evolution_points = std::size_t(std::atoi(argv[++i]));
+    else if(std::strcmp(argv[i], "--splits") == 0 && i + 1 < argc && (source = BS::split_source_from_name(argv[i + 1])))
+    {
+      split_source = *source;
+      ++i;
+    }
     else
     {
-      std::cerr << "usage: reproduce_paper [--evolve] [--evolution-points N] [--robust] [--threads N] [--csv FILE] [--markdown FILE]\n";
+      std::cerr << "usage: reproduce_paper [--evolve] [--splits forces|creases|both] [--evolution-points N] [--robust] "
+                   "[--threads N] [--csv FILE] [--markdown FILE]\n";
       return 2;
     }
   }
@@ -209,7 +219,9 @@ int main(int argc, char** argv)
   md << "Machine: " << BB::machine_description() << "; threads: "
      << (threads == 0 ? std::string("all cores") : std::to_string(threads)) << "; weighting: "
      << (robust ? "robust (Mixture, the default)" : "the paper's least squares") << "; "
-     << (evolve ? "fit_blended_shape() (part evolution)" : "fit_superquadric() (one superquadric)") << "\n\n"
+     << (evolve ? std::string("fit_blended_shape() (part evolution, splits from ") +
+                    BS::split_source_name(split_source) + ")"
+                : std::string("fit_superquadric() (one superquadric)")) << "\n\n"
      << "| data | points | param (paper / ours) | iter (paper / ours: all, on all points) | RMS_1,2,3 % paper | RMS_1,2,3 % ours "
         "| parts (paper / ours) | holes | genus | seconds (ours) | iteration / sweep | Chamfer / diagonal (ours) |\n"
      << "|---|---:|---:|---:|---|---|---:|---:|---:|---:|---:|---:|\n";
@@ -226,7 +238,8 @@ int main(int argc, char** argv)
     const double diag = BS::testing::bounding_box_diagonal(e.points);
     if(evolve)
     {
-      const auto r = BS::fit_blended_shape(e.points, BS::parameters::maximum_evolution_points(evolution_points, np));
+      const auto r = BS::fit_blended_shape(
+        e.points, BS::parameters::split_source(split_source, BS::parameters::maximum_evolution_points(evolution_points, np)));
       f.metrics = r.metrics;
       f.parts = r.number_of_parts();
       f.holes = r.model.shape().holes().size();

@@ -200,6 +200,7 @@ void test_bad_input(const Temp_dir& dir)
     {quote(dir / "five.xyz") + " --mesh " + quote(dir / "m.stl"), 2},
     {quote(dir / "five.xyz") + " --max-parts 0", 2},
     {quote(dir / "five.xyz") + " --no-split --max-parts 3", 2},
+    {quote(dir / "five.xyz") + " --splits sideways", 2},
     {quote(dir / "five.xyz") + " --json", 2},           // missing value
     {quote(dir / "a.xyz") + " " + quote(dir / "b.xyz"), 2}};
   for(const Case& c : cases)
@@ -334,6 +335,8 @@ void test_parts_run(const Temp_dir& dir)
   std::ostringstream kept_trace;
   kept_trace << "parts_trace/" << std::setw(2) << std::setfill('0') << kept << "_split.ply";
   BS_CHECK(kept > 0 && exists(dir / kept_trace.str()), "no trace of the kept split (" << kept_trace.str() << ")");
+  BS_CHECK(evolution.is_object() && evolution.value("split_source", std::string()) == "forces",
+           "the summary does not name the split source (forces by default)");
   blended_shape_test::report("blended_fit_parts");
 }
 

@@ -16,6 +16,7 @@
 #include <filesystem>
 #include <iomanip>
 #include <iostream>
+#include <optional>
 #include <sstream>
 #include <string>
 
@@ -44,6 +45,9 @@ const char* usage =
   "                       file as read_blended_shape() reads, in the model's own frame)\n"
   "  --no-split           one superquadric: no part evolution\n"
   "  --max-parts N        at most N parts (default 8; 1 is --no-split)\n"
+  "  --splits SOURCE      where splits come from: forces (default: the force analysis at rest,\n"
+  "                       sec. 5.4 of the paper), creases (a part fitted to each piece of the\n"
+  "                       data between concave creases, blended in gradually) or both\n"
   "  --evolution-points N decide the splits on at most N of the points (default 4000; 0:\n"
   "                       all), then fit the final model to all of them\n"
   "  --trace DIR          write, as the fit goes, the model after each split tried (kept or\n"
@@ -104,7 +108,10 @@ Json event_json(const BS::Evolution_event& e)
   if(e.kind != BS::Evolution_event_kind::Remove) // (a removal has no proposal)
   {
     j["new_component"] = double(e.new_component);
-    j["boundary"] = double(e.boundary);
+    if(e.proposal.segment != BS::Split_proposal::none) // (a crease segment's proposal has no boundary)
+      j["segment"] = double(e.proposal.segment);
+    else
+      j["boundary"] = double(e.boundary);
     Json region = Json::object();
     region["chart"] = double(e.proposal.chart);
     region["ellipse"] = numbers(e.proposal.region.data(), std::size_t(e.proposal.region.size()));
@@ -128,7 +135,8 @@ const char* end_of_evolution(const Result& r, bool no_split)
   return "no split paid for its parameters";
 }
 
-std::string summary_text(const Result& r, const std::string& input, bool no_split, std::size_t max_parts)
+std::string summary_text(const Result& r, const std::string& input, bool no_split, std::size_t max_parts,
+                         BS::Split_source split_source)
 {
   const BS::Fit_metrics& m = r.metrics;
   Json s = Json::object();
@@ -149,6 +157,7 @@ std::string summary_text(const Result& r, const std::string& input, bool no_spli
   evolution["splits_enabled"] = !no_split;
   evolution["holes_enabled"] = false;
   evolution["maximum_parts"] = double(max_parts);
+  evolution["split_source"] = BS::split_source_name(split_source);
   evolution["ended"] = end_of_evolution(r, no_split);
   evolution["splits_kept"] = double(r.number_of_splits());
   Json events = Json::array();
@@ -232,7 +241,7 @@ int main(int argc, char** argv)
 {
   const auto options = tools::known_options({"--json", "--mesh", "--hierarchy", "--model", "--max-iterations", "--seed",
                                               "--threads", "--strays", "--max-parts", "--trace",
-                                              "--evolution-points"},
+                                              "--evolution-points", "--splits"},
                                              {"--no-split", "--no-holes", "--quiet", "--robust", "--no-robust", "--explicit"});
   return tools::run_tool("blended_fit", usage, argc, argv, options, [](const tools::Command_line& line) {
     std::string input, json, mesh, hierarchy, model_file, strays, trace;
@@ -240,6 +249,7 @@ int main(int argc, char** argv)
     std::size_t iterations = 100, threads = 0, max_parts = BS::Evolution_settings().maximum_number_of_parts;
     std::size_t evolution_points = BS::Evolution_settings().maximum_evolution_points;
     unsigned int seed = 0;
+    BS::Split_source split_source = BS::Evolution_settings().split_source;
     for(const tools::Option& o : line.options)
     {
       const std::string& a = o.flag;
@@ -260,6 +270,13 @@ int main(int argc, char** argv)
         max_parts_given = true;
         if(max_parts == 0 || max_parts > 1000)
           throw tools::Usage_error("--max-parts must be in [1, 1000]");
+      }
+      else if(a == "--splits")
+      {
+        const std::optional<BS::Split_source> source = BS::split_source_from_name(o.value);
+        if(!source)
+          throw tools::Usage_error("--splits must be forces, creases or both, not '" + o.value + "'");
+        split_source = *source;
       }
       else if(a == "--evolution-points")
       {
@@ -319,11 +336,12 @@ int main(int argc, char** argv)
     reporter.trace = trace;
     const Result result = BS::fit_blended_shape(
       points,
+      BS::parameters::split_source(split_source,
       BS::parameters::maximum_evolution_points(evolution_points,
         BS::parameters::maximum_number_of_parts(max_parts,
         BS::parameters::number_of_threads(threads,
         BS::parameters::robust_weighting(robust ? BS::Robust_weighting::Mixture : BS::Robust_weighting::None,
-        BS::parameters::integrator(explicit_integrator ? BS::Integrator::Explicit : BS::Integrator::Gauss_newton)))))
+        BS::parameters::integrator(explicit_integrator ? BS::Integrator::Explicit : BS::Integrator::Gauss_newton))))))
         .number_of_iterations(iterations)
         .random_seed(seed)
         .visitor(reporter));
@@ -339,7 +357,7 @@ int main(int argc, char** argv)
                 << result.metrics.seconds << " s\n";
 
     // Everything is formatted before anything is written: no half outputs.
-    const std::string summary = summary_text(result, input, no_split, max_parts);
+    const std::string summary = summary_text(result, input, no_split, max_parts, split_source);
     if(!mesh.empty())
     {
       const auto pieces = pieces_of(result.model);

@@ -9,11 +9,50 @@
 
 #include <cmath>
 #include <cstddef>
+#include <optional>
 #include <stdexcept>
 #include <string>
 
 namespace CGAL {
 namespace Blended_shapes {
+
+/// \ingroup PkgBlendedShapeEvolution
+/// Where part evolution's split proposals come from (Evolution_settings::split_source).
+enum class Split_source
+{
+  /// The force analysis at rest (sec. 5.4, eq. 12, 13; propose_split()): the
+  /// component is split at `h = 0` (no point moves) and the copy fits on.
+  Force_regions,
+  /// The pieces of the data between concave creases (crease_segments();
+  /// propose_segment_split()): a superquadric fitted to a piece is blended
+  /// in gradually (sec. 4.1), `h` lowered in `blend_stages` stages.
+  Crease_segments,
+  /// Crease segments first, then force regions.
+  Both
+};
+
+/// \ingroup PkgBlendedShapeEvolution
+/// The name of a split source, for output: "forces", "creases", "both".
+inline const char* split_source_name(Split_source s)
+{
+  switch(s)
+  {
+  case Split_source::Force_regions: return "forces";
+  case Split_source::Crease_segments: return "creases";
+  case Split_source::Both: return "both";
+  }
+  return "unknown";
+}
+
+/// \ingroup PkgBlendedShapeEvolution
+/// The split source of a name split_source_name() gives, or nothing.
+inline std::optional<Split_source> split_source_from_name(const std::string& name)
+{
+  for(Split_source s : {Split_source::Force_regions, Split_source::Crease_segments, Split_source::Both})
+    if(name == split_source_name(s))
+      return s;
+  return std::nullopt;
+}
 
 /// \ingroup PkgBlendedShapeEvolution
 /// The settings of part evolution (Part_evolution, fit_blended_shape()).
@@ -39,6 +78,16 @@ struct Evolution_settings
   /// on all of them (0: evolution on all points; otherwise at least
   /// minimum_evolution_points). Part_evolution itself uses the points it is given.
   std::size_t maximum_evolution_points = 4000;
+  /// Where split proposals come from (Split_source).
+  Split_source split_source = Split_source::Force_regions;
+  /// A part blended in gradually (Split_source::Crease_segments) is
+  /// expressed in this many stages: `h = 1 - k / blend_stages` held
+  /// (Blended_shape::hold_parameter()) while the rest of the model fits to
+  /// rest (with the steepness `w` held at 1), for `k = 1, 2, ...`, then `h` and
+  /// `w` free from `h = 0` (1: at once). At `h = 1`
+  /// the fit does not lower `h` by itself: mixing a part into a small region
+  /// first moves points away before it moves them closer.
+  std::size_t blend_stages = 4;
 };
 
 /// \ingroup PkgBlendedShapeEvolution
@@ -62,6 +111,11 @@ inline void check_evolution_settings(const Evolution_settings& s, const std::str
     throw std::invalid_argument(who + ": threshold_factor must be finite and > 0");
   if(s.analysis_resolution < 4)
     throw std::invalid_argument(who + ": analysis_resolution must be at least 4");
+  if(s.blend_stages < 1)
+    throw std::invalid_argument(who + ": blend_stages must be at least 1");
+  if(s.split_source != Split_source::Force_regions && s.split_source != Split_source::Crease_segments &&
+     s.split_source != Split_source::Both)
+    throw std::invalid_argument(who + ": split_source is not a Split_source");
   if(s.maximum_evolution_points != 0 && s.maximum_evolution_points < minimum_evolution_points)
     throw std::invalid_argument(who + ": maximum_evolution_points must be 0 (evolution on all points) or at least " +
                                 std::to_string(minimum_evolution_points) + ", not " +

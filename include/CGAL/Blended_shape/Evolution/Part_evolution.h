@@ -4,6 +4,7 @@
 
 #include <CGAL/Blended_shape/Blending/Blended_shape_mesh.h>
 #include <CGAL/Blended_shape/Blending/Quotient_domain.h>
+#include <CGAL/Blended_shape/Evolution/Crease_segments.h>
 #include <CGAL/Blended_shape/Evolution/Evolution_settings.h>
 #include <CGAL/Blended_shape/Evolution/Force_regions.h>
 #include <CGAL/Blended_shape/Evolution/Split_proposal.h>
@@ -11,6 +12,7 @@
 #include <CGAL/Blended_shape/Fitting/Deformable_model_fitter.h>
 #include <CGAL/Blended_shape/Fitting/Fitting_settings.h>
 #include <CGAL/Blended_shape/Fitting/Fitting_visitor.h>
+#include <CGAL/Blended_shape/Fitting/fit_superquadric.h>
 #include <CGAL/Blended_shape/IO/check_points.h>
 #include <CGAL/Blended_shape/internal/isolated_points.h>
 
@@ -391,21 +393,32 @@ public:
     return removed;
   }
 
-  /// The split proposals of the current model (which should be at rest):
-  /// up to `maximum_split_tries`, from the boundaries of the force analysis
-  /// in decreasing order of their flux difference, one per pair of regions
-  /// (the curves between the same two regions give the same centre:
-  /// propose_split()), each shrunk about its centre where the shape refuses
-  /// its region (shrink_to_fit()); boundaries that give no region the shape
-  /// accepts are skipped.
+  /// The split proposals of the current model (which should be at rest),
+  /// up to `maximum_split_tries`, from the sources `split_source` says:
+  /// - crease segments (first, if both): the segments of at least
+  ///   minimum_segment_share of the points in decreasing size, except the
+  ///   largest (the body the others grow from), each giving the split of
+  ///   propose_segment_split(); the segments are those of the points and
+  ///   the model when proposals were first asked for (crease_segments(),
+  ///   outward directions: the model's normals at the points' closest points);
+  /// - force regions: the boundaries of the force analysis in decreasing
+  ///   order of their flux difference, one per pair of regions (the curves
+  ///   between the same two regions give the same centre: propose_split());
+  ///
+  /// each shrunk about its centre where the shape refuses its region
+  /// (shrink_to_fit()); those that give no region the shape accepts are skipped.
   std::vector<Split_proposal> propose_splits() const
   {
+    std::vector<Split_proposal> proposals;
+    if(m_settings.split_source != Split_source::Force_regions)
+      proposals = propose_segment_splits();
+    if(m_settings.split_source == Split_source::Crease_segments)
+      return proposals;
     const Model& model = m_fitter->model();
     const Blended_shape_pieces<GeomTraits> pieces(model.shape(), m_settings.analysis_resolution);
     const Quotient_domain<GeomTraits> domain(model.shape(), pieces, 1);
     const Force_regions<GeomTraits> regions(domain, normal_forces(*m_fitter, false), m_settings.threshold_factor,
                                             Equilibrated_regions::Kept);
-    std::vector<Split_proposal> proposals;
     for(std::size_t b = 0; b < regions.boundaries().size() && proposals.size() < m_settings.maximum_split_tries; ++b)
     {
       // The curves between the same two regions give one proposal (the
@@ -424,10 +437,21 @@ public:
     return proposals;
   }
 
+  /// Crease segments smaller than this share of the points give no split proposal.
+  static constexpr double minimum_segment_share = 0.03;
+
   /*!
   Splits the current model (at rest) as `proposal` says, fits it to rest and
   keeps it if its description length falls; otherwise (or if the split is
-  refused, or `callback` stops the fit) restores the model exactly. Records
+  refused, or `callback` stops the fit) restores the model exactly. A
+  proposal from a crease segment (`proposal.segment`) first fits the model
+  to rest on the points outside the segment (the base takes the shape of its
+  own points), then adds a superquadric fitted to the segment's points as a
+  gradual part (add_gradual_part(), in the region propose_segment_split()
+  gives on the moved base) and lowers its `h` in `blend_stages` stages, each
+  fitted to rest with `h` held, then fits with `h` free: the surface moves
+  by fits only, never by a jump. Any other proposal is a split at `h = 0`
+  (apply_split()). Records
   the event (not for a refused split) and calls the visitor's on_split() or
   on_undo(). Returns whether the split was kept.
   */
@@ -450,20 +474,29 @@ public:
     // The split model gets a fitter of its own; the one at rest before stays
     // as it is, to come back to.
     std::unique_ptr<Fitter> before;
+    const bool gradual = proposal.segment != Split_proposal::none;
+    if(gradual) // (its fits start with the base's)
+      internal::notify_phase(visitor, Evolution_phase::Split_fit, m_fitter->model().shape().number_of_components() + 1);
     try
     {
-      before = std::exchange(m_fitter, std::make_unique<Fitter>(m_kept, apply_split(m_fitter->model(), proposal),
-                                                                m_fitter->settings()));
+      std::optional<Model> split = gradual ? with_gradual_part(proposal, visitor, callback)
+                                           : std::optional<Model>(apply_split(m_fitter->model(), proposal));
+      if(!split)
+        return false; // stopped before anything changed
+      before = std::exchange(m_fitter, std::make_unique<Fitter>(m_kept, *split, m_fitter->settings()));
     }
     catch(const std::invalid_argument&)
     {
       return false; // a region the shape refuses: nothing changed
     }
     ++m_version;
-    m_fitter->start_from_foot_points_of(
-      *before, charts_moved_by_split(before->model(), m_fitter->model(), proposal.component));
-    internal::notify_phase(visitor, Evolution_phase::Split_fit, m_fitter->model().shape().number_of_components());
-    const Fitting_status status = fit_to_rest(visitor, callback);
+    if(!gradual) // the same surface: its closest points still are
+    {
+      m_fitter->start_from_foot_points_of(
+        *before, charts_moved_by_split(before->model(), m_fitter->model(), proposal.component));
+      internal::notify_phase(visitor, Evolution_phase::Split_fit, m_fitter->model().shape().number_of_components());
+    }
+    const Fitting_status status = gradual ? blend_in_stages(visitor, callback) : fit_to_rest(visitor, callback);
     const double msd_after = mean_squared_distance();
     e.description_length_after = description_length_of(msd_after, model());
     e.rms_after = std::sqrt(msd_after);
@@ -535,6 +568,133 @@ public:
   }
 
 private:
+  // The current model with a gradual part for the crease segment of
+  // `proposal`, made in two steps. First the model fits the points outside
+  // the segment to rest (a fit: the surface moves smoothly), so that the
+  // base takes the shape of its own points, not of both (on the box/cylinder
+  // scan, without this step the base stays the double pyramid over box and
+  // cylinder and the RMS stays 4 times the paper's). Then the superquadric
+  // fitted to the segment's points (fit_superquadric(), lengthened into its
+  // base: lengthened_into_base()) joins the moved base at h = 1
+  // (add_gradual_part()), in the region propose_segment_split() gives for
+  // the segment on the moved base. Nothing if the first fit is stopped by
+  // `callback` (its status is then the last fit's); throws
+  // std::invalid_argument if no region holds the segment on the moved base,
+  // or the shape refuses it.
+  template <class Visitor>
+  std::optional<Model> with_gradual_part(const Split_proposal& proposal, Visitor&& visitor,
+                                         const std::function<bool(double)>& callback)
+  {
+    std::vector<Point_3> members, others;
+    std::vector<Eigen::Vector3d> member_vectors;
+    std::vector<std::size_t> member_indices;
+    for(std::size_t i = 0; i < m_kept.size(); ++i)
+      if(m_segments->label[i] == proposal.segment)
+      {
+        const Eigen::Vector3d& p = m_fitter->points()[i];
+        members.emplace_back(p.x(), p.y(), p.z());
+        member_vectors.push_back(p);
+        member_indices.push_back(i);
+      }
+      else
+        others.push_back(m_kept[i]);
+    Fitter base_fit(others, m_fitter->model(), m_fitter->settings());
+    m_last_fit = base_fit.run(visitor, callback);
+    m_iterations += m_last_fit.iterations;
+    if(m_last_fit.aborted)
+      return std::nullopt;
+    const Model& base = base_fit.model();
+    Fitter on_all_points(m_kept, base, m_fitter->settings());
+    std::optional<Split_proposal> where = propose_segment_split(base, foot_points(on_all_points), member_indices);
+    if(where)
+      where = shrink_to_fit(base.shape(), *where);
+    if(!where)
+      throw std::invalid_argument("Part_evolution: no region on the base holds crease segment " +
+                                  std::to_string(proposal.segment));
+    where->segment = proposal.segment;
+    const auto part = fit_superquadric(members, parameters::number_of_threads(m_fitter->settings().number_of_threads));
+    return add_gradual_part(base, *where, lengthened_into_base(base, where->component, part.model, member_vectors));
+  }
+
+  // The closest point on the model of each point of `fitter` (its forces).
+  static std::vector<Chart_point> foot_points(Fitter& fitter)
+  {
+    const auto forces = fitter.forces();
+    std::vector<Chart_point> foot(forces.size());
+    for(std::size_t i = 0; i < forces.size(); ++i)
+      foot[i] = forces[i].chart_point;
+    return foot;
+  }
+
+  // Fits the model whose last blend is a gradual part at h = 1 to rest in
+  // blend_stages stages (Evolution_settings::blend_stages): h held at
+  // 1 - k / stages while the rest fits, then free from 0. Each stage moves
+  // the surface by a bounded amount (the evolution stays gradual). The
+  // steepness w is held with h (at 1, the smoothest blend): left free, the
+  // first stage drives it to its bound (a sharp step, as at a crease), and
+  // the later stages then stall in about one run of three on the same scan
+  // at other scales. Returns the last fit's status (an aborted stage ends it).
+  template <class Visitor>
+  Fitting_status blend_in_stages(Visitor&& visitor, const std::function<bool(double)>& callback)
+  {
+    const std::size_t blend = m_fitter->model().shape().number_of_blends() - 1;
+    const std::size_t h = m_fitter->model().shape().blend_offset(blend) + Ellipse_blending_region::H;
+    const std::size_t w = m_fitter->model().shape().blend_offset(blend) + Ellipse_blending_region::W;
+    const std::size_t stages = m_settings.blend_stages;
+    for(std::size_t k = 1; k <= stages; ++k)
+    {
+      Blended_shape<GeomTraits> shape = m_fitter->model().shape();
+      Eigen::VectorXd q = shape.parameters();
+      q[Eigen::Index(h)] = double(stages - k) / double(stages);
+      shape.hold_parameter(h, false);
+      shape.set_parameters(q);
+      shape.hold_parameter(h, k < stages);
+      shape.hold_parameter(w, k < stages);
+      m_fitter = std::make_unique<Fitter>(m_kept, Model(shape, m_fitter->model().translation(),
+                                                        m_fitter->model().quaternion()),
+                                          m_fitter->settings());
+      const Fitting_status status = fit_to_rest(visitor, callback);
+      if(status.aborted || k == stages)
+        return status;
+    }
+    return m_last_fit; // (not reached: stages >= 1)
+  }
+
+  // The proposals from crease segments (see propose_splits()); the segments
+  // are computed at the first call.
+  std::vector<Split_proposal> propose_segment_splits() const
+  {
+    const std::vector<Chart_point> foot = foot_points(*m_fitter);
+    const std::size_t n = foot.size();
+    if(!m_segments)
+    {
+      std::vector<Eigen::Vector3d> outward(n);
+      for(std::size_t i = 0; i < n; ++i)
+      {
+        const auto normal = model().normal(foot[i]);
+        outward[i] = Eigen::Vector3d(normal.x(), normal.y(), normal.z());
+      }
+      m_segments = crease_segments(m_fitter->points(), outward);
+    }
+    std::vector<Split_proposal> proposals;
+    for(std::size_t s = 1; s < m_segments->size.size() && proposals.size() < m_settings.maximum_split_tries; ++s)
+    {
+      if(double(m_segments->size[s]) < minimum_segment_share * double(n))
+        break;
+      std::vector<std::size_t> members;
+      for(std::size_t i = 0; i < n; ++i)
+        if(m_segments->label[i] == s)
+          members.push_back(i);
+      if(std::optional<Split_proposal> p = propose_segment_split(model(), foot, members))
+      {
+        p->segment = s;
+        if(const std::optional<Split_proposal> fitted = shrink_to_fit(model().shape(), *p))
+          proposals.push_back(*fitted);
+      }
+    }
+    return proposals;
+  }
+
   // See mean_squared_distance().
   double mean_squared_distance_of(Fitter& fitter) const
   {
@@ -578,6 +738,7 @@ private:
     double value = 0.;
   };
   Measure m_measured;
+  mutable std::optional<Crease_segments> m_segments; // see propose_segment_splits()
 };
 
 } // namespace Blended_shapes

@@ -5,6 +5,9 @@
 #include <CGAL/Blended_shape/Blending/Ellipse_blending_region.h>
 #include <CGAL/Blended_shape/Evolution/Force_regions.h>
 #include <CGAL/Blended_shape/Fitting/Deformable_blended_model.h>
+#include <CGAL/Blended_shape/Fitting/Deformable_model.h>
+#include <CGAL/Blended_shape/Primitives/Superquadric_ellipsoid.h>
+#include <CGAL/Blended_shape/internal/quaternion.h>
 
 #include <Eigen/Core>
 #include <Eigen/Eigenvalues>
@@ -15,6 +18,7 @@
 #include <optional>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace CGAL {
@@ -25,13 +29,18 @@ namespace Blended_shapes {
 /// (`Blended_shape::split()`) made from a boundary curve of `Force_regions`.
 struct Split_proposal
 {
-  std::size_t boundary = 0;  ///< the boundary curve it comes from (index in Force_regions::boundaries())
+  /// No boundary curve or segment (see `boundary`, `segment`).
+  static constexpr std::size_t none = std::size_t(-1);
+  /// The boundary curve it comes from (index in Force_regions::boundaries()), or `none`.
+  std::size_t boundary = 0;
+  /// The segment of crease_segments() it comes from (propose_segment_split()), or `none`.
+  std::size_t segment = none;
   std::size_t component = 0; ///< the component to split
   std::size_t chart = 0;     ///< the component's chart that holds the region
   /// The ellipse region (eq. 29): centre, radii and angle in the chart, `w = 1`, `h = 0`.
   Ellipse_blending_region::Parameter_vector region = Ellipse_blending_region::make_parameters(0., 0., 0.5, 0.5, 0.);
   double half_width = 0.;       ///< the strip half-width `r`, in chart units
-  std::size_t new_part_region = 0; ///< the force region inside the ellipse: the side that becomes the new part
+  std::size_t new_part_region = 0; ///< the force region inside the ellipse: the side that becomes the new part (`none` for a segment's)
 };
 
 namespace internal {
@@ -204,6 +213,109 @@ std::optional<Split_proposal> propose_split(const Force_regions<GeomTraits>& reg
   return p;
 }
 
+/*!
+\ingroup PkgBlendedShapeEvolution
+
+The split that gives the points `members` of a segment of the data
+(crease_segments(): a part between concave creases) to a new part, or
+nothing. `foot_points[i]` is the closest point on `model` of point `i`
+(Deformable_model_fitter::forces()), for all points, not only the members.
+
+- <b>Component</b>: the one that holds most of the members' closest
+  points. Nothing if the members are 60 % or more of the points of that
+  component: it is that part already (split off before).
+- <b>Chart</b>: of that component's charts that show 90 % or more of the
+  most any chart shows (to_chart()), the one where their mean lies nearest
+  the chart's centre: the region has room to move there.
+- <b>Region</b> (eq. 29): the ellipse of the members' closest points in that
+  chart (those the chart covers, `to_chart()`): centred at their mean, radii
+  `e_i = 2 sqrt(lambda_i)` from the eigenvalues of their covariance (for
+  points spread evenly over an ellipse of radii `e_1, e_2` the variances
+  along its axes are `e_i^2 / 4`), the minor at least a quarter of the major;
+  strip half-width `r = 0.2 e_2`; on a disk chart fitted into it as
+  propose_split() does.
+
+Part_evolution blends a superquadric fitted to the members into this
+region gradually (Evolution_settings::split_source).
+*/
+template <class GeomTraits>
+std::optional<Split_proposal> propose_segment_split(const Deformable_blended_model<GeomTraits>& model,
+                                                    const std::vector<Chart_point>& foot_points,
+                                                    const std::vector<std::size_t>& members)
+{
+  const Blended_shape<GeomTraits>& shape = model.shape();
+  std::vector<std::size_t> on_component(shape.number_of_components(), 0), members_on(on_component);
+  for(const Chart_point& u : foot_points)
+    ++on_component[model.chart_component(u.chart)];
+  for(std::size_t i : members)
+    ++members_on[model.chart_component(foot_points.at(i).chart)];
+  const std::size_t component =
+    std::size_t(std::max_element(members_on.begin(), members_on.end()) - members_on.begin());
+  if(members_on[component] == 0 || 10 * members_on[component] >= 6 * on_component[component])
+    return std::nullopt;
+  const auto& primitive = shape.component(component).shape();
+  std::vector<std::vector<Eigen::Vector2d>> shown(primitive.number_of_charts());
+  for(std::size_t i : members)
+  {
+    const Shape_point p = model.shape_point(foot_points[i]);
+    if(p.component != component)
+      continue;
+    for(std::size_t g = 0; g < shown.size(); ++g)
+    {
+      Chart_point q;
+      if(primitive.to_chart(p.u, g, q))
+        shown[g].emplace_back(q.x, q.y);
+    }
+  }
+  std::size_t most = 0;
+  for(const auto& x : shown)
+    most = (std::max)(most, x.size());
+  if(most < 3)
+    return std::nullopt;
+  std::size_t chart = 0;
+  double best = HUGE_VAL;
+  Eigen::Vector2d centre = Eigen::Vector2d::Zero();
+  for(std::size_t g = 0; g < shown.size(); ++g)
+  {
+    if(10 * shown[g].size() < 9 * most)
+      continue;
+    Eigen::Vector2d mean = Eigen::Vector2d::Zero();
+    for(const Eigen::Vector2d& v : shown[g])
+      mean += v;
+    mean /= double(shown[g].size());
+    const double off = mean.norm() / primitive.chart_domain(g).radius;
+    if(off < best)
+    {
+      best = off;
+      chart = g;
+      centre = mean;
+    }
+  }
+  const std::vector<Eigen::Vector2d>& x = shown[chart];
+  Eigen::Matrix2d covariance = Eigen::Matrix2d::Zero();
+  for(const Eigen::Vector2d& v : x)
+    covariance += (v - centre) * (v - centre).transpose();
+  covariance /= double(x.size());
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> eigen(covariance); // eigenvalues increasing
+  double e1 = 2. * std::sqrt((std::max)(eigen.eigenvalues()[1], 0.));
+  double e2 = (std::max)(2. * std::sqrt((std::max)(eigen.eigenvalues()[0], 0.)), 0.25 * e1);
+  if(!(e2 > 0.))
+    return std::nullopt;
+  const Eigen::Vector2d major = eigen.eigenvectors().col(1);
+  const Chart_domain chart_domain = primitive.chart_domain(chart);
+  if(chart_domain.kind == Chart_kind::Disk && !internal::fit_into_disk(chart_domain.radius, centre, e1, e2))
+    return std::nullopt;
+  Split_proposal p;
+  p.boundary = Split_proposal::none;
+  p.component = component;
+  p.chart = chart;
+  p.region = Ellipse_blending_region::make_parameters(centre.x(), centre.y(), e1, e2,
+                                                      std::atan2(major.y(), major.x()), 1., 0.);
+  p.half_width = 0.2 * e2;
+  p.new_part_region = Split_proposal::none;
+  return p;
+}
+
 /// \ingroup PkgBlendedShapeEvolution
 /// `model` split as `proposal` says (Blended_shape::split(), `h = 0`): the
 /// same surface, with one more component and one more blend.
@@ -221,6 +333,103 @@ Deformable_blended_model<GeomTraits> apply_split(const Deformable_blended_model<
   catch(const std::invalid_argument& e)
   {
     throw std::invalid_argument(std::string("apply_split: the proposed split is refused: ") + e.what());
+  }
+  return Deformable_blended_model<GeomTraits>(shape, model.translation(), model.quaternion());
+}
+
+namespace internal {
+
+// The frame of component `base` of `model` in the model's frame: rotation and translation.
+template <class GeomTraits>
+std::pair<Eigen::Matrix3d, Eigen::Vector3d> component_frame(const Deformable_blended_model<GeomTraits>& model,
+                                                            std::size_t base)
+{
+  const Eigen::Matrix3d R_model = rotation_matrix(model.quaternion());
+  return {R_model * model.shape().root_rotation(base),
+          model.translation() + R_model * model.shape().root_translation(base)};
+}
+
+// The pole of `part` (chart 0: its +z end, chart 1: its -z end) farther from
+// the centre of component `base`: the end that sticks out.
+template <class GeomTraits>
+std::size_t exposed_pole(const Deformable_blended_model<GeomTraits>& model, std::size_t base,
+                         const Deformable_model<Superquadric_ellipsoid<GeomTraits>>& part)
+{
+  const Eigen::Vector3d centre = component_frame(model, base).second;
+  const Eigen::Vector3d z = part.shape().parameters()[2] * rotation_matrix(part.quaternion()).col(2);
+  return (part.translation() + z - centre).norm() >= (part.translation() - z - centre).norm() ? 0 : 1;
+}
+
+} // namespace internal
+
+/*!
+\ingroup PkgBlendedShapeEvolution
+`part` (a superquadric fitted to the points `members` of a crease segment,
+placed in the model's frame) lengthened into component `base` of `model`:
+its exposed end (the pole farther from the base's centre) stays, its
+other end moves along its axis so that its centre lies below the crease by
+0.4 times its mean radius `(a1 + a2) / 2`. The crease is the members'
+lowest level along the axis, from the exposed end. A fit to one view of a
+part sees only what sticks out and may end at the crease; the gradual
+blend joins the part along a curve near its equator (add_gradual_part()),
+which must then lie in the base, not halfway up the part. A part whose
+centre is already that deep is returned as it is.
+*/
+template <class GeomTraits>
+Deformable_model<Superquadric_ellipsoid<GeomTraits>>
+lengthened_into_base(const Deformable_blended_model<GeomTraits>& model, std::size_t base,
+                     const Deformable_model<Superquadric_ellipsoid<GeomTraits>>& part,
+                     const std::vector<Eigen::Vector3d>& members)
+{
+  if(members.empty())
+    return part;
+  const Eigen::Matrix3d R = internal::rotation_matrix(part.quaternion());
+  const Eigen::Vector3d axis = internal::exposed_pole(model, base, part) == 0 ? R.col(2) : Eigen::Vector3d(-R.col(2));
+  Eigen::VectorXd q = part.shape().parameters(); // a1, a2, a3, e1, e2
+  double crease = HUGE_VAL; // along the axis, from the centre
+  for(const Eigen::Vector3d& p : members)
+    crease = (std::min)(crease, (p - part.translation()).dot(axis));
+  const double depth = crease - 0.4 * 0.5 * (q[0] + q[1]); // where the centre goes, along the axis
+  if(!(depth < 0.))
+    return part; // deep enough already
+  q[2] -= depth; // the exposed end stays
+  Superquadric_ellipsoid<GeomTraits> shape = part.shape();
+  shape.set_parameters(q);
+  return Deformable_model<Superquadric_ellipsoid<GeomTraits>>(shape, part.translation() + depth * axis,
+                                                              part.quaternion());
+}
+
+/*!
+\ingroup PkgBlendedShapeEvolution
+`model` with the superquadric `part` (placed, in the model's frame: a fit to
+a crease segment, lengthened_into_base()) added as a gradual part
+(Blended_shape::add_part(), sec. 4.1) in the region of `proposal`
+(propose_segment_split()): at `h = 1`, so no point of the surface moves;
+lowering `h` expresses the part. The part's placement is taken into the
+frame of its base (`proposal.component`); on the part, the annulus region
+(radius 0.9, half-width 0.1 in chart units: near its equator) is around
+its exposed pole, the one farther from the base's centre.
+\throws std::invalid_argument if the shape refuses the region; the message says why.
+*/
+template <class GeomTraits>
+Deformable_blended_model<GeomTraits>
+add_gradual_part(const Deformable_blended_model<GeomTraits>& model, const Split_proposal& proposal,
+                 const Deformable_model<Superquadric_ellipsoid<GeomTraits>>& part)
+{
+  const std::size_t base = proposal.component;
+  const auto [R_base, t_base] = internal::component_frame(model, base);
+  const Eigen::Matrix3d R = R_base.transpose() * internal::rotation_matrix(part.quaternion());
+  const Eigen::Vector3d t = R_base.transpose() * (part.translation() - t_base);
+  Blended_shape<GeomTraits> shape = model.shape();
+  try
+  {
+    shape.add_part(base, proposal.chart, proposal.region, proposal.half_width, part.shape(), "superquadric_ellipsoid",
+                   t, internal::quaternion_from_matrix(R), internal::exposed_pole(model, base, part),
+                   Ellipse_blending_region::make_parameters(0., 0., 0.9, 0.9, 0., 1., 0.), 0.1);
+  }
+  catch(const std::invalid_argument& e)
+  {
+    throw std::invalid_argument(std::string("add_gradual_part: the part is refused: ") + e.what());
   }
   return Deformable_blended_model<GeomTraits>(shape, model.translation(), model.quaternion());
 }

@@ -174,7 +174,7 @@ result does not depend on the unit of the points or on where they are.
   - every member of Evolution_settings (evolution_settings_from_named_parameters()):
     `maximum_number_of_parts` (1: one superquadric), `target_accuracy`,
     `maximum_split_tries`, `threshold_factor`, `analysis_resolution`,
-    `maximum_evolution_points`;
+    `maximum_evolution_points`, `split_source`, `blend_stages`;
   - `point_map`, `geom_traits`, `try_all_axes`, `reference_mesh`: as for fit_superquadric();
   - `visitor`: a fitting visitor (Default_fitting_visitor), whose
     `on_split()` and `on_undo()` are called too if it has them, and
