@@ -658,6 +658,16 @@ void test_evolution_limits()
   bad.threshold_factor = -1.;
   refused(bad, "threshold_factor");
   bad = BS::Evolution_settings();
+  bad.blend_stages = 0;
+  refused(bad, "blend_stages");
+  bad = BS::Evolution_settings();
+  bad.split_source = static_cast<BS::Split_source>(7);
+  refused(bad, "split_source");
+  for(BS::Split_source source : {BS::Split_source::Force_regions, BS::Split_source::Crease_segments, BS::Split_source::Both})
+    BS_CHECK(BS::split_source_from_name(BS::split_source_name(source)) == source,
+             "the split source named " << BS::split_source_name(source) << " is not found by its name");
+  BS_CHECK(!BS::split_source_from_name("sideways"), "a split source named sideways");
+  bad = BS::Evolution_settings();
   bad.maximum_evolution_points = 10;
   refused(bad, "maximum_evolution_points must be 0 (evolution on all points) or at least 100");
 }
