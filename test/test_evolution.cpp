@@ -1390,7 +1390,8 @@ void test_lengthened_into_base()
 
 // Evolution from crease segments (Split_source::Crease_segments) on the
 // cylinder on a box: one split, the cylinder's segment blended in as a
-// gradual part (a Part blend), two parts; stopped by the
+// gradual part (a Part blend), two parts, the same bits on one thread as
+// on all; stopped by the
 // callback while the part is blended in, the model is the one before, valid.
 template <class K>
 void test_crease_evolution()
@@ -1424,6 +1425,13 @@ void test_crease_evolution()
   std::cout << "  crease evolution on a cylinder on a box (" << points.size() << " points): " << r.number_of_parts()
             << " parts, least-squares RMS " << before << " -> " << after << ", result's "
             << 100. * r.metrics.rms_over_bbox_diagonal << " % of the diagonal" << std::endl;
+  // the same bits on one thread as on all (the segment's own superquadric
+  // fit and the staged fits included)
+  const auto one_thread = BS::fit_blended_shape(
+    points, BS::parameters::number_of_threads(std::size_t(1), BS::parameters::split_source(BS::Split_source::Crease_segments)));
+  BS_CHECK(BS::testing::same_bits(one_thread.model.parameters(), r.model.parameters()) &&
+             one_thread.metrics.iterations == r.metrics.iterations,
+           "crease evolution: one thread and all threads differ");
   // stopped while the part is blended in: the first fit and evolution's
   // first fit to rest pass, the gradual part's stages are stopped
   std::size_t calls = 0;
