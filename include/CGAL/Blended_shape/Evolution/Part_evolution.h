@@ -50,7 +50,7 @@ struct Evolution_event
   std::size_t iteration = 0;  ///< fitting iterations done before the event
   std::size_t component = 0;  ///< the component split (Remove: the component removed)
   std::size_t new_component = 0; ///< the component the split added (gone again after an undo; Remove: 0)
-  std::size_t boundary = 0;   ///< the boundary curve of the force analysis it came from (Remove: 0)
+  std::size_t boundary = 0;   ///< the boundary curve of the force analysis it came from (Remove: 0; from a crease segment: Split_proposal::none, see `proposal.segment`)
   Split_proposal proposal;    ///< where (Remove: the default)
   double description_length_before = 0.; ///< of the model at rest before the event (see Part_evolution)
   double description_length_after = 0.;  ///< of the split model at rest (Remove: of the model without the part, not refitted)
