@@ -1354,6 +1354,17 @@ void test_add_gradual_part()
   {
     BS_CHECK(std::string(e.what()).find("add_gradual_part") != std::string::npos, e.what());
   }
+  BS::Split_proposal no_base = proposal;
+  no_base.component = 5;
+  try
+  {
+    BS::add_gradual_part(body, no_base, part);
+    BS_CHECK(false, "a part on a component that does not exist was accepted");
+  }
+  catch(const std::invalid_argument& e)
+  {
+    BS_CHECK(std::string(e.what()).find("component 5 does not exist") != std::string::npos, e.what());
+  }
 }
 
 // lengthened_into_base(): a part fitted to what sticks out (a cylinder on
@@ -1368,7 +1379,7 @@ void test_lengthened_into_base()
   typedef BS::Deformable_blended_model<K> Model;
   typedef BS::Deformable_model<BS::Superquadric_ellipsoid<K>> Part;
   const Model body(BS::Blended_shape<K>(BS::Superquadric_ellipsoid<K>(1., 1., 1., 1., 1.)));
-  std::vector<Eigen::Vector3d> members;
+  std::vector<typename K::Point_3> members;
   for(int k = 0; k < 50; ++k)
     members.emplace_back(0.3 * std::cos(0.1 * k), 0.3 * std::sin(0.1 * k), 1. + 0.01 * k);
   for(const Eigen::Vector4d& q : {Eigen::Vector4d(1., 0., 0., 0.), Eigen::Vector4d(0., 1., 0., 0.)}) // (w, x, y, z)

@@ -585,16 +585,13 @@ private:
   std::optional<Model> with_gradual_part(const Split_proposal& proposal, Visitor&& visitor,
                                          const std::function<bool(double)>& callback)
   {
+    const std::vector<std::size_t> member_indices = segment_members(proposal.segment);
     std::vector<Point_3> members, others;
-    std::vector<Eigen::Vector3d> member_vectors;
-    std::vector<std::size_t> member_indices;
-    for(std::size_t i = 0; i < m_kept.size(); ++i)
-      if(m_segments->label[i] == proposal.segment)
+    for(std::size_t i = 0, next = 0; i < m_kept.size(); ++i)
+      if(next < member_indices.size() && member_indices[next] == i)
       {
-        const Eigen::Vector3d& p = m_fitter->points()[i];
-        members.emplace_back(p.x(), p.y(), p.z());
-        member_vectors.push_back(p);
-        member_indices.push_back(i);
+        members.push_back(m_kept[i]);
+        ++next;
       }
       else
         others.push_back(m_kept[i]);
@@ -613,7 +610,17 @@ private:
                                   std::to_string(proposal.segment));
     where->segment = proposal.segment;
     const auto part = fit_superquadric(members, parameters::number_of_threads(m_fitter->settings().number_of_threads));
-    return add_gradual_part(base, *where, lengthened_into_base(base, where->component, part.model, member_vectors));
+    return add_gradual_part(base, *where, lengthened_into_base(base, where->component, part.model, members));
+  }
+
+  // The indices (increasing) of the points in crease segment `s`.
+  std::vector<std::size_t> segment_members(std::size_t s) const
+  {
+    std::vector<std::size_t> members;
+    for(std::size_t i = 0; i < m_segments->label.size(); ++i)
+      if(m_segments->label[i] == s)
+        members.push_back(i);
+    return members;
   }
 
   // The closest point on the model of each point of `fitter` (its forces).
@@ -681,11 +688,7 @@ private:
     {
       if(double(m_segments->size[s]) < minimum_segment_share * double(n))
         break;
-      std::vector<std::size_t> members;
-      for(std::size_t i = 0; i < n; ++i)
-        if(m_segments->label[i] == s)
-          members.push_back(i);
-      if(std::optional<Split_proposal> p = propose_segment_split(model(), foot, members))
+      if(std::optional<Split_proposal> p = propose_segment_split(model(), foot, segment_members(s)))
       {
         p->segment = s;
         if(const std::optional<Split_proposal> fitted = shrink_to_fit(model().shape(), *p))

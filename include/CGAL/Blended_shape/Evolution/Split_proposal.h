@@ -344,6 +344,9 @@ template <class GeomTraits>
 std::pair<Eigen::Matrix3d, Eigen::Vector3d> component_frame(const Deformable_blended_model<GeomTraits>& model,
                                                             std::size_t base)
 {
+  if(base >= model.shape().number_of_components())
+    throw std::invalid_argument("component " + std::to_string(base) + " does not exist (the model has " +
+                                std::to_string(model.shape().number_of_components()) + " components)");
   const Eigen::Matrix3d R_model = rotation_matrix(model.quaternion());
   return {R_model * model.shape().root_rotation(base),
           model.translation() + R_model * model.shape().root_translation(base)};
@@ -374,12 +377,13 @@ part sees only what sticks out and may end at the crease; the gradual
 blend joins the part along a curve near its equator (add_gradual_part()),
 which must then lie in the base, not halfway up the part. A part whose
 centre is already that deep is returned as it is.
+\throws std::invalid_argument if `base` is not a component of `model`.
 */
 template <class GeomTraits>
 Deformable_model<Superquadric_ellipsoid<GeomTraits>>
 lengthened_into_base(const Deformable_blended_model<GeomTraits>& model, std::size_t base,
                      const Deformable_model<Superquadric_ellipsoid<GeomTraits>>& part,
-                     const std::vector<Eigen::Vector3d>& members)
+                     const std::vector<typename GeomTraits::Point_3>& members)
 {
   if(members.empty())
     return part;
@@ -387,8 +391,9 @@ lengthened_into_base(const Deformable_blended_model<GeomTraits>& model, std::siz
   const Eigen::Vector3d axis = internal::exposed_pole(model, base, part) == 0 ? R.col(2) : Eigen::Vector3d(-R.col(2));
   Eigen::VectorXd q = part.shape().parameters(); // a1, a2, a3, e1, e2
   double crease = HUGE_VAL; // along the axis, from the centre
-  for(const Eigen::Vector3d& p : members)
-    crease = (std::min)(crease, (p - part.translation()).dot(axis));
+  for(const auto& p : members)
+    crease = (std::min)(crease, (Eigen::Vector3d(CGAL::to_double(p.x()), CGAL::to_double(p.y()), CGAL::to_double(p.z())) -
+                                 part.translation()).dot(axis));
   const double depth = crease - 0.4 * 0.5 * (q[0] + q[1]); // where the centre goes, along the axis
   if(!(depth < 0.))
     return part; // deep enough already
@@ -409,7 +414,8 @@ lowering `h` expresses the part. The part's placement is taken into the
 frame of its base (`proposal.component`); on the part, the annulus region
 (radius 0.9, half-width 0.1 in chart units: near its equator) is around
 its exposed pole, the one farther from the base's centre.
-\throws std::invalid_argument if the shape refuses the region; the message says why.
+\throws std::invalid_argument if `proposal.component` is not a component of
+        `model` or the shape refuses the region; the message says why.
 */
 template <class GeomTraits>
 Deformable_blended_model<GeomTraits>
@@ -417,12 +423,12 @@ add_gradual_part(const Deformable_blended_model<GeomTraits>& model, const Split_
                  const Deformable_model<Superquadric_ellipsoid<GeomTraits>>& part)
 {
   const std::size_t base = proposal.component;
-  const auto [R_base, t_base] = internal::component_frame(model, base);
-  const Eigen::Matrix3d R = R_base.transpose() * internal::rotation_matrix(part.quaternion());
-  const Eigen::Vector3d t = R_base.transpose() * (part.translation() - t_base);
   Blended_shape<GeomTraits> shape = model.shape();
   try
   {
+    const auto [R_base, t_base] = internal::component_frame(model, base);
+    const Eigen::Matrix3d R = R_base.transpose() * internal::rotation_matrix(part.quaternion());
+    const Eigen::Vector3d t = R_base.transpose() * (part.translation() - t_base);
     shape.add_part(base, proposal.chart, proposal.region, proposal.half_width, part.shape(), "superquadric_ellipsoid",
                    t, internal::quaternion_from_matrix(R), internal::exposed_pole(model, base, part),
                    Ellipse_blending_region::make_parameters(0., 0., 0.9, 0.9, 0., 1., 0.), 0.1);
