@@ -642,6 +642,45 @@ void test_held_parameter(const Model<K>& truth)
            "released: h " << released_h << ", mean squared distance " << released_before << " -> " << released_after);
   std::cout << "  held h: stays 0.6, mean squared distance " << before << " -> " << after << "; released: h -> "
             << released_h << ", distance " << released_after << std::endl;
+  // a blending region's curve held: e_u, e_v, e_1, e_2, e_theta keep their
+  // bits through a fit that moves w, h and the rest
+  BS::Blended_shape<K> curve_held = shape;
+  curve_held.hold_blending_region(0);
+  const char* curve[] = {"b0.e_u", "b0.e_v", "b0.e_1", "b0.e_2", "b0.e_theta"};
+  for(const char* name : curve)
+    BS_CHECK(curve_held.is_fixed_parameter(parameter_index(curve_held, name)), name << " is not held");
+  BS_CHECK(!curve_held.is_fixed_parameter(parameter_index(curve_held, "b0.w")) &&
+             !curve_held.is_fixed_parameter(parameter_index(curve_held, "b0.h")),
+           "holding the region's curve held w or h");
+  {
+    BS::Deformable_model_fitter<Model<K>> fitter(pts, Model<K>(curve_held, truth.translation(), truth.quaternion()));
+    const double start = fitter.mean_squared_distance(true);
+    for(int it = 0; it < 10; ++it)
+      fitter.step();
+    const Eigen::VectorXd q0 = Model<K>(curve_held, truth.translation(), truth.quaternion()).parameters();
+    const Eigen::VectorXd q1 = fitter.model().parameters();
+    for(const char* name : curve)
+    {
+      const Eigen::Index i = Eigen::Index(pose + parameter_index(curve_held, name));
+      BS_CHECK(q1[i] == q0[i], name << " moved while held: " << q0[i] << " -> " << q1[i]);
+    }
+    const Eigen::Index hh = Eigen::Index(pose + h);
+    BS_CHECK(q1[hh] != q0[hh] && fitter.mean_squared_distance(true) < start,
+             "with the curve held, h " << q0[hh] << " -> " << q1[hh] << ", distance " << start << " -> "
+                                      << fitter.mean_squared_distance(true));
+  }
+  curve_held.hold_blending_region(0, false);
+  for(const char* name : curve)
+    BS_CHECK(!curve_held.is_fixed_parameter(parameter_index(curve_held, name)), name << " still held when released");
+  try
+  {
+    curve_held.hold_blending_region(curve_held.number_of_blends());
+    BS_CHECK(false, "hold_blending_region() accepted a blend index out of range");
+  }
+  catch(const std::out_of_range& e)
+  {
+    BS_CHECK(std::string(e.what()).find("out of range") != std::string::npos, e.what());
+  }
   // the structure's fixed parameters stay fixed; a change of structure releases holds
   BS::Blended_shape<K> glued = body_with_nose<K>();
   const std::size_t glued_h = parameter_index(glued, "b0.h");

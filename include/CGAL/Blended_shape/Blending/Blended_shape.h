@@ -344,6 +344,26 @@ public:
     m_fixed[i] = held || compute_fixed(i);
   }
 
+  /*!
+  Holds (`held` true) or releases the curve of blend `b`'s region: its
+  `e_u, e_v, e_1, e_2, e_theta` (eq. 29), with hold_parameter(); `w` and
+  `h` are left as they are. These are the most nonlinear parameters of a
+  blended shape: the points of the strip follow the curve through the
+  blending function, so that a move of a fraction of the strip width
+  changes the surface far more than its derivatives predict. Evolution
+  holds them while it lowers a gradual blend's `h` in stages, and in the
+  final fit on all points of a model it evolved on a sample.
+  \throws std::out_of_range if `b` is not a blend index.
+  */
+  void hold_blending_region(std::size_t b, bool held = true)
+  {
+    if(b >= m_blends.size())
+      throw std::out_of_range("Blended_shape::hold_blending_region: blend index " + std::to_string(b) +
+                              " out of range (" + std::to_string(m_blends.size()) + " blends)");
+    for(std::size_t j = Ellipse_blending_region::E_U; j <= Ellipse_blending_region::E_THETA; ++j)
+      hold_parameter(blend_offset(b) + j, held);
+  }
+
 private:
   bool compute_fixed(std::size_t i) const
   {

@@ -640,7 +640,11 @@ private:
   // steepness w is held with h (at 1, the smoothest blend): left free, the
   // first stage drives it to its bound (a sharp step, as at a crease), and
   // the later stages then stall in about one run of three on the same scan
-  // at other scales. Returns the last fit's status (an aborted stage ends it).
+  // at other scales. The region's curve is held too (Blended_shape::
+  // hold_blending_region()): free, it was what kept each stage from rest
+  // (the fits ended at the 100-iteration limit; held, they rest in 20-40
+  // iterations on the box/cylinder scan). Returns the last fit's status (an
+  // aborted stage ends it).
   template <class Visitor>
   Fitting_status blend_in_stages(Visitor&& visitor, const std::function<bool(double)>& callback)
   {
@@ -657,6 +661,7 @@ private:
       shape.set_parameters(q);
       shape.hold_parameter(h, k < stages);
       shape.hold_parameter(w, k < stages);
+      shape.hold_blending_region(blend, k < stages); // the curve moves in the last, free fit
       m_fitter = std::make_unique<Fitter>(m_kept, Model(shape, m_fitter->model().translation(),
                                                         m_fitter->model().quaternion()),
                                           m_fitter->settings());

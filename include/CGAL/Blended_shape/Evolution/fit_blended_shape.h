@@ -59,6 +59,18 @@ std::vector<Point_3> evolution_points(const std::vector<Point_3>& points, const 
   return thinned;
 }
 
+// `model` with the curves of all its blending regions held (`held` true) or
+// released (Blended_shape::hold_blending_region()).
+template <class GeomTraits>
+Deformable_blended_model<GeomTraits> with_blending_regions_held(const Deformable_blended_model<GeomTraits>& model,
+                                                               bool held)
+{
+  Blended_shape<GeomTraits> shape = model.shape();
+  for(std::size_t b = 0; b < shape.number_of_blends(); ++b)
+    shape.hold_blending_region(b, held);
+  return Deformable_blended_model<GeomTraits>(shape, model.translation(), model.quaternion());
+}
+
 // Passes the hooks of an evolution on normalized points to `visitor` with
 // the events and models in the frame of the input.
 template <class Visitor, class GeomTraits>
@@ -283,7 +295,13 @@ auto fit_blended_shape(const PointRange& points, const NamedParameters& np = CGA
         starts.reserve(kept.size());
         for(std::size_t k : internal::nearest_points(rest_fitter->points(), kept_coordinates))
           starts.push_back(forces[k].chart_point);
-        final_fit = std::make_unique<Fitter>(kept, evolution.model(), rest_fitter->settings());
+        // The blending regions' curves stay where evolution left them at
+        // rest on the sample (a sampling error away from their rest on all
+        // points): free, they are the parameters that keep the fit from rest
+        // (Blended_shape::hold_blending_region()); held, the final fit on
+        // all points needs about half the iterations.
+        final_fit = std::make_unique<Fitter>(kept, internal::with_blending_regions_held(evolution.model(), true),
+                                             rest_fitter->settings());
         final_fit->start_from_chart_points(starts);
         if(!result.status.aborted)
         {
@@ -299,7 +317,7 @@ auto fit_blended_shape(const PointRange& points, const NamedParameters& np = CGA
       }
       else
         result.stray_points = evolution.isolated_points();
-      result.model = normalization.model_from_normalized(rest_fitter->model());
+      result.model = normalization.model_from_normalized(internal::with_blending_regions_held(rest_fitter->model(), false));
       result.metrics = normalization.from_normalized(
         compute_fit_metrics(*rest_fitter, normalization.to_normalized(first.initial_ellipsoid), rest));
     }
