@@ -991,6 +991,11 @@ void test_sampled_evolution()
   BS_CHECK(c.number_of_parts() == 2 && c.metrics.number_of_points == fitted && c.status.converged,
            "evolution on 500 points: " << c.number_of_parts() << " parts, figures of " << c.metrics.number_of_points
                                        << " points (" << fitted << " not isolated), converged " << c.status.converged);
+  // the final fit on all points holds the regions' curves; the result has them released
+  for(std::size_t b = 0; b < c.model.shape().number_of_blends(); ++b)
+    for(std::size_t j = BS::Ellipse_blending_region::E_U; j <= BS::Ellipse_blending_region::E_THETA; ++j)
+      BS_CHECK(!c.model.shape().is_fixed_parameter(c.model.shape().blend_offset(b) + j),
+               "evolution on 500 points: the result's region parameter " << j << " of blend " << b << " is still held");
   for(const auto& e : c.events)
   {
     if(e.kind == BS::Evolution_event_kind::Remove)

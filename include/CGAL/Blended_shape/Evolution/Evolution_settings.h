@@ -75,7 +75,7 @@ struct Evolution_settings
   /// fit_blended_shape() evolves the model on at most this many of the
   /// points (every `k`-th point of those not isolated, in input order, `k`
   /// the smallest that leaves no more), then fits the evolved model to rest
-  /// on all of them (0: evolution on all points; otherwise at least
+  /// on all of them, the blending regions' curves held (0: evolution on all points; otherwise at least
   /// minimum_evolution_points). Part_evolution itself uses the points it is given.
   std::size_t maximum_evolution_points = 4000;
   /// Where split proposals come from (Split_source).
@@ -83,8 +83,9 @@ struct Evolution_settings
   /// A part blended in gradually (Split_source::Crease_segments) is
   /// expressed in this many stages: `h = 1 - k / blend_stages` held
   /// (Blended_shape::hold_parameter()) while the rest of the model fits to
-  /// rest (with the steepness `w` held at 1), for `k = 1, 2, ...`, then `h` and
-  /// `w` free from `h = 0` (1: at once). At `h = 1`
+  /// rest (with the steepness `w` held at 1 and the region's curve where the
+  /// part was placed, Blended_shape::hold_blending_region()), for
+  /// `k = 1, 2, ...`, then `h`, `w` and the curve free from `h = 0` (1: at once). At `h = 1`
   /// the fit does not lower `h` by itself: mixing a part into a small region
   /// first moves points away before it moves them closer.
   std::size_t blend_stages = 4;

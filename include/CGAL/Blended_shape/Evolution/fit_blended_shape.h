@@ -172,7 +172,9 @@ input order. Its split test still counts all of them
 (Part_evolution::set_described_points()), and the evolved model is then
 fitted to rest on all of them, each projection starting from the foot
 point of the nearest point of the sample
-(Deformable_model_fitter::start_from_chart_points()). Fewer points are not
+(Deformable_model_fitter::start_from_chart_points()), with the curves of
+the blending regions held where evolution left them
+(Blended_shape::hold_blending_region(); released in the result). Fewer points are not
 sampled (the result is that of `maximum_evolution_points` 0, bit for bit).
 
 Like fit_superquadric(), evolution works on a copy of the points centred at
