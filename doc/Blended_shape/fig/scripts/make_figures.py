@@ -11,11 +11,14 @@ It builds chart_mesh_dump.cpp (this directory) in a temporary build tree, not
 in the package build, and runs `blended_fit --trace` (default:
 build/bin/blended_fit of the source tree; build it, blended_scan and
 blended_make_object first) on the bundled mug scan and on a scan of the
-box/cylinder CAD object for the picture sequences of part evolution; the
+box/cylinder CAD object for the picture sequences of part evolution, with
+the default split proposals (the force analysis) and with crease segments
+(`--splits creases`), printing each run's figures for the captions; the
 final hierarchy is drawn by Graphviz's dot if it is installed.
 """
 
 import argparse
+import json
 import os
 import subprocess
 import sys
@@ -186,7 +189,8 @@ def trace_sequence(trace_dir):
             steps.append(("event %d: split kept" % int(index), stem))
         elif kind == "final":
             if steps and steps[-1][0].endswith("split kept"):
-                steps[-1] = (steps[-1][0] + " (final)", steps[-1][1])  # the last split kept is the result
+                # the last split kept, then fitted to all points: the result
+                steps[-1] = (steps[-1][0] + ", final fit", stem)
             else:
                 steps.append(("final model: one superquadric (no split kept)", stem))
     return [(t, os.path.join(trace_dir, s + ".ply"), os.path.join(trace_dir, s + ".dot")) for t, s in steps]
@@ -203,11 +207,23 @@ def render_dot(dot_path, png_path):
 
 def figure_evolution(blended_fit, scan, path, title, view, elev, azim, extra=()):
     """The scan, the first fit, the model after each kept split and the final
-    hierarchy, from `blended_fit --trace` (the manual's picture sequence)."""
+    hierarchy, from `blended_fit --trace` (the manual's picture sequence).
+    Prints the run's figures (for the caption)."""
     with tempfile.TemporaryDirectory() as tmp:
         trace = os.path.join(tmp, "trace")
-        subprocess.run([blended_fit, scan, "--trace", trace, "--quiet"] + list(extra), check=True,
+        summary = os.path.join(tmp, "summary.json")
+        subprocess.run([blended_fit, scan, "--trace", trace, "--json", summary, "--quiet"] + list(extra), check=True,
                        stdout=subprocess.DEVNULL)
+        with open(summary) as f:
+            s = json.load(f)
+        events = s["evolution"]["events"]
+        diagonal = s["rms"] / s["rms_over_bbox_diagonal"]
+        print("%s: %d parts, RMS_1,2,3 %s %%, RMS %.2f %% of the diagonal, %.1f s; events: %s" % (
+            os.path.basename(path), s["parts"], ", ".join("%.2f" % (100 * r) for r in s["relative_rms"]),
+            100 * s["rms_over_bbox_diagonal"], s["seconds"],
+            "; ".join("%d %s (RMS %.2f -> %.2f %%)" % (k + 1, e["kind"], 100 * e["rms_before"] / diagonal,
+                                                        100 * e["rms_after"] / diagonal)
+                      for k, e in enumerate(events))))
         steps = trace_sequence(trace)
         models = [(t, read_ascii_ply(ply)) for t, ply, _ in steps]
         hierarchy_png = os.path.join(tmp, "hierarchy.png")
@@ -280,8 +296,16 @@ def main():
             figure_evolution(args.blended_fit, scan, os.path.join(FIG, "box_cylinder_evolution.png"),
                              "blended_fit on the box/cylinder CAD object scanned from one view (Fig. 19 of the paper)",
                              lambda p: p, 20, -60)
+            figure_evolution(args.blended_fit, scan, os.path.join(FIG, "box_cylinder_creases.png"),
+                             "blended_fit --splits creases on the same box/cylinder scan",
+                             lambda p: p, 20, -60, extra=("--splits", "creases"))
+        figure_evolution(args.blended_fit, os.path.join(ROOT, "data", "scans", "pcl_mug_scan.xyz"),
+                         os.path.join(FIG, "mug_creases.png"),
+                         "blended_fit --splits creases on data/scans/pcl_mug_scan.xyz",
+                         scanner_view, 20, -110, extra=("--splits", "creases"))
     else:
-        print("make_figures.py: %s not found, mug_fit.png and box_cylinder_evolution.png not updated "
+        print("make_figures.py: %s not found, mug_fit.png, box_cylinder_evolution.png, box_cylinder_creases.png "
+              "and mug_creases.png not updated "
               "(build blended_fit, blended_scan and blended_make_object first)"
               % args.blended_fit, file=sys.stderr)
     return 0
