@@ -68,6 +68,12 @@ void test_closest_points_against_brute_force(std::mt19937_64& rng)
     charts.back().set_positions([&](const BS::Chart_point& u) { return model.point(u); });
   }
   const BS::Closest_point_locator<K> locator(charts);
+  typedef typename BS::Closest_point_locator<K>::Tree Tree;
+  typedef CGAL::AABB_tree<CGAL::AABB_traits<K, typename BS::Closest_point_locator<K>::Primitive>> Plain_tree;
+  Plain_tree plain; // CGAL's own traits over the same faces
+  for(const auto& cm : charts)
+    plain.insert(faces(cm.mesh()).first, faces(cm.mesh()).second, cm.mesh());
+  plain.build();
   const double size = model.shape().parameters().template head<3>().maxCoeff();
   std::uniform_real_distribution<double> box(-4. * size, 4. * size), offset(-0.02 * size, 0.02 * size);
   int checked = 0;
@@ -83,6 +89,27 @@ void test_closest_points_against_brute_force(std::mt19937_64& rng)
     const double da = std::sqrt(CGAL::to_double(CGAL::squared_distance(a.mesh_point, q)));
     const double db = std::sqrt(CGAL::to_double(CGAL::squared_distance(b.mesh_point, q)));
     BS_CHECK(std::abs(da - db) <= 1e-12 * size, "AABB distance " << da << " vs brute force " << db);
+    // The locator's leaf test (plane first) answers as CGAL's own traits, to
+    // the bit, unbounded and bounded (by a surface point, and by a point just
+    // farther or just closer than the closest one).
+    BS_CHECK(locator.tree().closest_point(q) == plain.closest_point(q), "plane-first leaf test: another closest point");
+    const auto id = plain.any_reference_point_and_id().second;
+    const typename K::Vector_3 out = (q - CGAL::ORIGIN) - (b.mesh_point - CGAL::ORIGIN);
+    for(const typename K::Point_3& bound : {on, q - out * 1.001, q - out * 0.999})
+    {
+      BS_CHECK(locator.tree().closest_point_and_primitive(q, typename Tree::Point_and_primitive_id(bound, id)).first ==
+                 plain.closest_point_and_primitive(q, typename Plain_tree::Point_and_primitive_id(bound, id)).first,
+               "plane-first leaf test: another bounded answer");
+      BS::Located_point<K> loc;
+      const double bound_distance = std::sqrt(CGAL::to_double(CGAL::squared_distance(bound, q)));
+      const bool closer = locator.locate_closer_than(q, bound, loc);
+      if(db < bound_distance * (1. - 1e-9))
+        BS_CHECK(closer && std::abs(std::sqrt(CGAL::to_double(CGAL::squared_distance(loc.mesh_point, q))) - db) <=
+                             1e-12 * size,
+                 "locate_closer_than missed a point at " << db << " within " << bound_distance);
+      else if(db > bound_distance * (1. + 1e-9))
+        BS_CHECK(!closer, "locate_closer_than found a point closer than the closest, " << db);
+    }
     // The mesh point is on the face its chart point came from.
     const auto& cm = charts[a.chart_mesh];
     const auto v = cm.face_vertices(a.face);
