@@ -94,7 +94,30 @@ public:
     const Plane_first_AABB_traits& m_traits;
   };
 
+  /// The node test: whether a node's box reaches into the ball about the
+  /// query through the best point so far, in plain double arithmetic
+  /// (CGAL's sphere-box test goes through the kernel's filtered predicate:
+  /// 13 % of the same run). The ball is widened by 1e-9 of its radius
+  /// squared, far above rounding: a node it keeps too many holds no point
+  /// inside the ball, so the answers stay CGAL's.
+  class Compare_distance
+  {
+    typedef typename GeomTraits::Point_3 Point;
+
+  public:
+    CGAL::Comparison_result operator()(const Point& p, const CGAL::Bbox_3& box, const Point& bound) const
+    {
+      const double x = CGAL::to_double(p.x()), y = CGAL::to_double(p.y()), z = CGAL::to_double(p.z());
+      const double radius2 = CGAL::to_double(CGAL::squared_distance(p, bound));
+      const double dx = (std::max)({box.xmin() - x, 0., x - box.xmax()});
+      const double dy = (std::max)({box.ymin() - y, 0., y - box.ymax()});
+      const double dz = (std::max)({box.zmin() - z, 0., z - box.zmax()});
+      return dx * dx + dy * dy + dz * dz <= radius2 * (1. + 1e-9) ? CGAL::SMALLER : CGAL::LARGER;
+    }
+  };
+
   Closest_point closest_point_object() const { return Closest_point(*this); }
+  Compare_distance compare_distance_object() const { return Compare_distance(); }
 };
 
 } // namespace internal
