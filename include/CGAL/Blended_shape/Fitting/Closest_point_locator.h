@@ -149,7 +149,7 @@ public:
   /// primitive (a query's leaf tests then read three points instead of
   /// walking the face's halfedges: 15-20 % of a blended model's fit iteration).
   typedef CGAL::AABB_face_graph_triangle_primitive<Mesh, CGAL::Default, CGAL::Tag_false, CGAL::Tag_true> Primitive;
-  /// The AABB traits: CGAL's, with a cheaper leaf test (internal::Plane_first_AABB_traits).
+  /// The AABB traits: CGAL's, with cheaper leaf and node tests (internal::Plane_first_AABB_traits).
   typedef internal::Plane_first_AABB_traits<GeomTraits, Primitive> Traits;
   typedef CGAL::AABB_tree<Traits> Tree;                     ///< the AABB tree type
 
