@@ -409,6 +409,27 @@ private:
     n = m_nv;
   }
 
+  // The point at chart point `w` becomes the current one if it is on the
+  // surface and closer (then true, with its canonical chart point, Jacobian
+  // and normal); `left_surface` is set if `w` is off the chart or in a
+  // discarded part of the domain.
+  bool move_if_closer(const Chart_point& w, bool& left_surface)
+  {
+    Chart_point v;
+    Eigen::Vector3d xv; // with m_Jv, the Jacobian of the next step, if this one is kept
+    if(!eval_canonical(w, v, xv, m_Jv))
+    {
+      left_surface = true;
+      return false;
+    }
+    const double dv = (m_p - xv).squaredNorm();
+    if(!(dv < d2))
+      return false;
+    u = v; x = xv; d2 = dv; J = m_Jv;
+    take_normal();
+    return true;
+  }
+
   // One safeguarded Gauss-Newton step in the coordinates of chart point
   // `from` (the current point, or another representative of it) with the
   // chart Jacobian `Jf` there: true if it brought the point closer (then u,
@@ -456,22 +477,8 @@ private:
         // (a step 4096 times shorter), down to that length.
         const int halvings = (length2 < 1e-14) ? 1 : 12;
         for(int half = 0; half < halvings && (half < 4 || step.squaredNorm() >= 1e-14); ++half, step *= 0.5)
-        {
-          Chart_point v;
-          Eigen::Vector3d xv; // with m_Jv, the Jacobian of the next step, if this one is kept
-          if(!eval_canonical(Chart_point(from.chart, from.x + step[0], from.y + step[1]), v, xv, m_Jv))
-          {
-            left_surface = true; // off the chart or into a discarded part of the domain
-            continue;
-          }
-          const double dv = (m_p - xv).squaredNorm();
-          if(dv < d2)
-          {
-            u = v; x = xv; d2 = dv; J = m_Jv;
-            take_normal();
+          if(move_if_closer(Chart_point(from.chart, from.x + step[0], from.y + step[1]), left_surface))
             return true;
-          }
-        }
         if(length2 < 1e-14)
         {
           converged = true;
@@ -519,20 +526,10 @@ private:
     if(!(H(0, 0) > 0. && det > 1e-12 * CGAL::square(H.trace())))
       return false;
     Eigen::Vector2d step = H.inverse() * (J.transpose() * r);
+    bool left_surface = false; // (a Newton step off the surface is only not taken)
     for(int half = 0; half < 2; ++half, step *= 0.5)
-    {
-      Chart_point v;
-      Eigen::Vector3d xv;
-      if(!eval_canonical(Chart_point(u.chart, u.x + step[0], u.y + step[1]), v, xv, m_Jv))
-        continue;
-      const double dv = (m_p - xv).squaredNorm();
-      if(dv < d2)
-      {
-        u = v; x = xv; d2 = dv; J = m_Jv;
-        take_normal();
+      if(move_if_closer(Chart_point(u.chart, u.x + step[0], u.y + step[1]), left_surface))
         return true;
-      }
-    }
     return false;
   }
 
