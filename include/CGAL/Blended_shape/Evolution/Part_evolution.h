@@ -460,8 +460,10 @@ public:
   gives on the moved base) and lowers its `h` in `blend_stages` stages, each
   fitted with `h` held (for at most intermediate_stage_iterations
   iterations), then fits to rest with `h` free, the region's curve held
-  where the proposal put it: the surface moves by fits only, never by a jump. Any other proposal is a split at `h = 0`
-  (apply_split()). Records
+  where the proposal put it: the surface moves by fits and by steps of `h`
+  of `1 / blend_stages` (each moves the surface inside the region that
+  share of the way from the base towards the part), never all at once.
+  Any other proposal is a split at `h = 0` (apply_split()). Records
   the event (not for a refused split) and calls the visitor's on_split() or
   on_undo(). Returns whether the split was kept.
   */
