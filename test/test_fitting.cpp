@@ -193,6 +193,12 @@ void test_energy_decrease(BS::Integrator integrator, std::mt19937_64& rng)
   for(int it = 0; it < 8; ++it)
   {
     const auto forces = fitter.forces();
+    const auto foot = fitter.foot_points();
+    BS_CHECK(foot.size() == forces.size(), "foot_points(): " << foot.size() << " for " << forces.size() << " forces");
+    for(std::size_t k = 0; k < (std::min)(foot.size(), forces.size()); ++k)
+      BS_CHECK(foot[k].chart == forces[k].chart_point.chart && foot[k].x == forces[k].chart_point.x &&
+                 foot[k].y == forces[k].chart_point.y && forces[k].index == k,
+               "foot_points()[" << k << "] is not the force's chart point");
     const Model<K> before = fitter.model();
     const double true_before = fitter.mean_squared_distance(true);
     auto fixed_energy = [&](const Model<K>& m) {

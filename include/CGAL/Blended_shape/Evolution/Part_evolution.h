@@ -496,7 +496,15 @@ public:
                                            : std::optional<Model>(apply_split(m_fitter->model(), proposal));
       if(!split)
         return false; // stopped before anything changed
-      before = std::exchange(m_fitter, std::make_unique<Fitter>(m_kept, *split, m_fitter->settings()));
+      std::unique_ptr<Fitter> next;
+      if(gradual)
+      {
+        next = stage_fitter(*split, 1, m_fitter->settings());
+        next->start_from_chart_points(base_foot_points);
+      }
+      else
+        next = std::make_unique<Fitter>(m_kept, *split, m_fitter->settings());
+      before = std::exchange(m_fitter, std::move(next));
     }
     catch(const std::invalid_argument&)
     {
@@ -510,7 +518,7 @@ public:
       internal::notify_phase(visitor, Evolution_phase::Split_fit, m_fitter->model().shape().number_of_components());
     }
     const Fitting_status status =
-      gradual ? blend_in_stages(base_foot_points, visitor, callback) : fit_to_rest(visitor, callback);
+      gradual ? blend_in_stages(before->settings(), visitor, callback) : fit_to_rest(visitor, callback);
     const double msd_after = mean_squared_distance();
     e.description_length_after = description_length_of(msd_after, model());
     e.rms_after = std::sqrt(msd_after);
@@ -600,7 +608,7 @@ private:
                                          Visitor&& visitor, const std::function<bool(double)>& callback)
   {
     const std::vector<std::size_t> member_indices = segment_members(proposal.segment);
-    const std::vector<Chart_point> foot = foot_points(*m_fitter);
+    const std::vector<Chart_point> foot = m_fitter->foot_points();
     std::vector<Point_3> members, others;
     std::vector<Chart_point> others_foot; // where the base's fit starts its projections
     for(std::size_t i = 0, next = 0; i < m_kept.size(); ++i)
@@ -622,7 +630,7 @@ private:
       return std::nullopt;
     const Model& base = base_fit.model();
     Fitter on_all_points(m_kept, base, m_fitter->settings());
-    base_foot_points = foot_points(on_all_points);
+    base_foot_points = on_all_points.foot_points();
     std::optional<Split_proposal> where = propose_segment_split(base, base_foot_points, member_indices);
     if(where)
       where = shrink_to_fit(base.shape(), *where);
@@ -644,16 +652,6 @@ private:
     return members;
   }
 
-  // The closest point on the model of each point of `fitter` (its forces).
-  static std::vector<Chart_point> foot_points(Fitter& fitter)
-  {
-    const auto forces = fitter.forces();
-    std::vector<Chart_point> foot(forces.size());
-    for(std::size_t i = 0; i < forces.size(); ++i)
-      foot[i] = forces[i].chart_point;
-    return foot;
-  }
-
   // Fits the model whose last blend is a gradual part at h = 1 to rest in
   // blend_stages stages (Evolution_settings::blend_stages): h held at
   // 1 - k / stages while the rest fits, then free from 0. Each stage moves
@@ -667,58 +665,62 @@ private:
   // along it (on the box/cylinder scan: the curve's turn and radius with
   // the part's exponent, about 0.5 % of the energy an iteration, still
   // going at the 100-iteration limit). Each stage's projections start
-  // from the foot points of the stage before (the first stage's from
-  // `base_foot_points`, those of the base alone, which the part at h = 1
-  // does not hide): a search from the tessellation alone misses foot points
-  // next to the blend, whose faces straddle the cut, and the stage rests
-  // far from the points (on the box/cylinder scan the third stage rested
-  // at 1.8 times the energy), besides costing the first step 2 to 4 times a
-  // later one. The stages before the last stop after
+  // from the foot points of the stage before (the first stage's, which
+  // try_split() makes, from the foot points of the base alone, which the
+  // part at h = 1 does not hide): a search from the tessellation alone
+  // misses foot points next to the blend, whose faces straddle the cut, and
+  // the stage rests far from the points (on the box/cylinder scan the third
+  // stage rested at 1.8 times the energy), besides costing the first step 2
+  // to 4 times a later one. The stages before the last stop after
   // intermediate_stage_iterations (the last fits to rest): only the last
   // stage's rest is judged, and where a stage creeps (a part's exponents
   // near a box's, on the CAD mug: 100 iterations a stage) the cap bounds
-  // its cost. Returns the last fit's status (an aborted stage ends it).
+  // its cost. `m_fitter` is the first stage's fitter (stage_fitter());
+  // `fit_settings` are those of the fits before the split. Returns the last
+  // fit's status (an aborted stage ends it).
   template <class Visitor>
-  Fitting_status blend_in_stages(const std::vector<Chart_point>& base_foot_points, Visitor&& visitor,
+  Fitting_status blend_in_stages(const Fitting_settings& fit_settings, Visitor&& visitor,
                                  const std::function<bool(double)>& callback)
   {
-    const std::size_t blend = m_fitter->model().shape().number_of_blends() - 1;
-    const std::size_t h = m_fitter->model().shape().blend_offset(blend) + Ellipse_blending_region::H;
-    const std::size_t w = m_fitter->model().shape().blend_offset(blend) + Ellipse_blending_region::W;
-    const std::size_t stages = m_settings.blend_stages;
-    const Fitting_settings fit_settings = m_fitter->settings();
-    for(std::size_t k = 1; k <= stages; ++k)
+    for(std::size_t k = 1;; ++k)
     {
-      Blended_shape<GeomTraits> shape = m_fitter->model().shape();
-      Eigen::VectorXd q = shape.parameters();
-      q[Eigen::Index(h)] = double(stages - k) / double(stages);
-      shape.hold_parameter(h, false);
-      shape.set_parameters(q);
-      shape.hold_parameter(h, k < stages);
-      shape.hold_parameter(w, k < stages);
-      shape.hold_blending_region(blend, true);
-      Fitting_settings settings = fit_settings;
-      if(k < stages)
-        settings.maximum_iterations = (std::min)(settings.maximum_iterations, intermediate_stage_iterations);
-      std::unique_ptr<Fitter> stage = std::make_unique<Fitter>(
-        m_kept, Model(shape, m_fitter->model().translation(), m_fitter->model().quaternion()), settings);
-      if(k == 1)
-        stage->start_from_chart_points(base_foot_points);
-      else
-        stage->start_from_foot_points_of(*m_fitter);
-      m_fitter = std::move(stage);
       const Fitting_status status = fit_to_rest(visitor, callback);
-      if(status.aborted || k == stages)
+      if(status.aborted || k >= m_settings.blend_stages)
         return status;
+      std::unique_ptr<Fitter> next = stage_fitter(m_fitter->model(), k + 1, fit_settings);
+      next->start_from_foot_points_of(*m_fitter);
+      m_fitter = std::move(next);
     }
-    return m_last_fit; // (not reached: stages >= 1)
+  }
+
+  // The fitter of stage k (from 1 to blend_stages) of blend_in_stages(),
+  // from `from` (the split model at h = 1 for the first stage, else the
+  // last stage's model) and the settings of the fits before the split.
+  std::unique_ptr<Fitter> stage_fitter(const Model& from, std::size_t k, const Fitting_settings& fit_settings) const
+  {
+    const std::size_t stages = m_settings.blend_stages;
+    Blended_shape<GeomTraits> shape = from.shape();
+    const std::size_t blend = shape.number_of_blends() - 1;
+    const std::size_t h = shape.blend_offset(blend) + Ellipse_blending_region::H;
+    const std::size_t w = shape.blend_offset(blend) + Ellipse_blending_region::W;
+    Eigen::VectorXd q = shape.parameters();
+    q[Eigen::Index(h)] = double(stages - k) / double(stages);
+    shape.hold_parameter(h, false);
+    shape.set_parameters(q);
+    shape.hold_parameter(h, k < stages);
+    shape.hold_parameter(w, k < stages);
+    shape.hold_blending_region(blend, true);
+    Fitting_settings settings = fit_settings;
+    if(k < stages)
+      settings.maximum_iterations = (std::min)(settings.maximum_iterations, intermediate_stage_iterations);
+    return std::make_unique<Fitter>(m_kept, Model(shape, from.translation(), from.quaternion()), settings);
   }
 
   // The proposals from crease segments (see propose_splits()); the segments
   // are computed at the first call.
   std::vector<Split_proposal> propose_segment_splits() const
   {
-    const std::vector<Chart_point> foot = foot_points(*m_fitter);
+    const std::vector<Chart_point> foot = m_fitter->foot_points();
     const std::size_t n = foot.size();
     if(!m_segments)
     {

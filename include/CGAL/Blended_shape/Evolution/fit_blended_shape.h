@@ -292,11 +292,11 @@ auto fit_blended_shape(const PointRange& points, const NamedParameters& np = CGA
             kept.push_back(normalized[i]);
             kept_coordinates.push_back(coordinates[i]);
           }
-        const auto forces = rest_fitter->forces();
+        const std::vector<Chart_point> foot = rest_fitter->foot_points();
         std::vector<Chart_point> starts;
         starts.reserve(kept.size());
         for(std::size_t k : internal::nearest_points(rest_fitter->points(), kept_coordinates))
-          starts.push_back(forces[k].chart_point);
+          starts.push_back(foot[k]);
         // The blending regions' curves stay where evolution left them at
         // rest on the sample (a sampling error away from their rest on all
         // points): free, they are the parameters that keep the fit from rest

@@ -442,6 +442,10 @@ public:
     return status;
   }
 
+  /// The closest point (foot point) on the current model of every point, in
+  /// the order of the points: the chart points of forces(), without the forces.
+  std::vector<Chart_point> foot_points() { return correspondences_of_all_points().u; }
+
   /// The data forces of every point on the current model (eq. 8).
   std::vector<Data_force<Geom_traits>> forces()
   {
