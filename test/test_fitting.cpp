@@ -561,7 +561,9 @@ void test_bad_input()
   try { BS::fit_superquadric(ok, BS::parameters::energy_tolerance(-1.)); } catch(const std::invalid_argument&) { ++thrown; }
   try { BS::fit_superquadric(ok, BS::parameters::rest_tolerance(std::nan(""))); } catch(const std::invalid_argument&) { ++thrown; }
   try { BS::fit_superquadric(ok, BS::parameters::rest_tolerance(1.)); } catch(const std::invalid_argument&) { ++thrown; }
-  BS_CHECK(thrown == 5, "invalid settings accepted: " << 5 - thrown);
+  try { BS::fit_superquadric(ok, BS::parameters::settling_tolerance(-1e-3)); } catch(const std::invalid_argument&) { ++thrown; }
+  try { BS::fit_superquadric(ok, BS::parameters::settling_tolerance(std::nan(""))); } catch(const std::invalid_argument&) { ++thrown; }
+  BS_CHECK(thrown == 7, "invalid settings accepted: " << 7 - thrown);
   // A flat cloud is a documented result, never NaN.
   std::vector<Point_3> flat;
   for(int i = 0; i < 200; ++i) flat.emplace_back(i % 20, i / 20, 0.);
@@ -632,6 +634,56 @@ void test_misfit_rest_state(std::mt19937_64& rng)
   const auto robust = BS::fit_superquadric(points);
   BS_CHECK(robust.metrics.converged,
            "robust misfit fit did not come to rest in " << robust.metrics.iterations << " iterations");
+}
+
+// Fitting_settings::settling_tolerance: a step whose swept trials the true
+// energy refused stalls (a rest state) when they promised at most the
+// tolerance, and not with tolerance 0 (the damping grows instead). Two
+// fitters of the misfit box/cylinder, one with each, step alike from starts
+// off their rest until the first step they disagree on: that step must be
+// one the settling fitter stalls at and the other rejects without stalling,
+// with the model unmoved in both; and some start must have such a step (not
+// every one need: one may reach a negligible step first, where both stall).
+template <class K>
+void test_settling()
+{
+  std::mt19937_64 rng(7);
+  const auto points = box_cylinder_view<K>(cloud_size(3000), rng);
+  const auto fit = BS::fit_superquadric(points, BS::parameters::robust_weighting(BS::Robust_weighting::None));
+  BS::Fitting_settings strict;
+  strict.robust_weighting = BS::Robust_weighting::None;
+  strict.settling_tolerance = 0.;
+  BS::Fitting_settings settling = strict;
+  settling.settling_tolerance = 0.999;
+  int disagreements = 0;
+  for(double factor : {1.1, 0.9, 1.2})
+  {
+    Model<K> start = fit.model;
+    Eigen::VectorXd q = start.parameters();
+    q.segment<3>(7) *= factor;   // the semi-axes, off their rest,
+    q.tail<2>().setConstant(0.2); // and box-like exponents: closest points on its edges
+    start.set_parameters(q);
+    BS::Deformable_model_fitter<Model<K>> a(points, start, strict), b(points, start, settling);
+    int stalled_alike = 0;
+    for(int it = 0; it < 100 && stalled_alike < 3; ++it)
+    {
+      const Eigen::VectorXd before = a.model().parameters();
+      const BS::Step_report ra = a.step(), rb = b.step();
+      if(ra.accepted == rb.accepted && ra.stalled == rb.stalled)
+      {
+        BS_CHECK(a.model().parameters() == b.model().parameters(), "settling: the fitters parted without a sign");
+        stalled_alike = ra.stalled ? stalled_alike + 1 : 0;
+        continue;
+      }
+      ++disagreements;
+      BS_CHECK(!ra.accepted && !rb.accepted && rb.stalled && !ra.stalled,
+               "settling: step " << it << " accepted " << ra.accepted << "/" << rb.accepted << ", stalled "
+                                 << ra.stalled << "/" << rb.stalled);
+      BS_CHECK(a.model().parameters() == before && b.model().parameters() == before, "settling: a refused step moved");
+      break;
+    }
+  }
+  BS_CHECK(disagreements > 0, "settling: no step the true energy refused from any start");
 }
 
 // The search among similar basins after the full fit
@@ -711,7 +763,7 @@ void test_settings_from_named_parameters()
   const BS::Fitting_settings d, none = BS::settings_from_named_parameters();
   BS_CHECK(none.integrator == d.integrator && none.maximum_iterations == d.maximum_iterations &&
              none.energy_tolerance == d.energy_tolerance && none.force_tolerance == d.force_tolerance &&
-             none.rest_tolerance == d.rest_tolerance &&
+             none.rest_tolerance == d.rest_tolerance && none.settling_tolerance == d.settling_tolerance &&
              none.steady_iterations == d.steady_iterations && none.mesh_resolution == d.mesh_resolution &&
              none.projection_iterations == d.projection_iterations && none.subset_size == d.subset_size &&
              none.random_seed == d.random_seed && none.rigid_first == d.rigid_first &&
@@ -725,7 +777,8 @@ void test_settings_from_named_parameters()
     BSP::steady_iterations(std::size_t(3), BSP::mesh_resolution(7, BSP::projection_iterations(9,
     BSP::subset_size(std::size_t(123), BSP::rigid_first(true, BSP::rigid_iterations(std::size_t(4),
     BSP::robust_weighting(BS::Robust_weighting::Cauchy, BSP::maximum_size_factor(2.5,
-    BSP::placement_stiffness(0.5, BSP::rest_tolerance(1e-3, BSP::number_of_threads(std::size_t(3)))))))))))))))
+    BSP::placement_stiffness(0.5, BSP::rest_tolerance(1e-3, BSP::settling_tolerance(0.25,
+    BSP::number_of_threads(std::size_t(3))))))))))))))))
       .number_of_iterations(std::size_t(77))
       .random_seed(5u)
       .maximum_running_time(3.));
@@ -734,7 +787,7 @@ void test_settings_from_named_parameters()
              s.projection_iterations == 9 && s.subset_size == 123 && s.random_seed == 5 && s.rigid_first &&
              s.rigid_iterations == 4 && s.robust_weighting == BS::Robust_weighting::Cauchy &&
              s.maximum_size_factor == 2.5 && s.placement_stiffness == 0.5 && s.maximum_running_time == 3. &&
-             s.rest_tolerance == 1e-3 && s.number_of_threads == 3,
+             s.rest_tolerance == 1e-3 && s.settling_tolerance == 0.25 && s.number_of_threads == 3,
            "a named parameter did not reach its setting");
 }
 
@@ -757,6 +810,7 @@ void run(const char* kernel, bool full)
     test_explicit_integrator<K>(rng);
   test_bad_input<K>();
   test_misfit_rest_state<K>(rng);
+  test_settling<K>();
   test_similar_basin_search<K>();
   std::cout << "fitting with " << kernel << (blended_shape_test::failures() == before ? ": SUCCESS" : ": FAILED")
             << std::endl;

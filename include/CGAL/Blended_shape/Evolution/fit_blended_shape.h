@@ -221,8 +221,10 @@ auto fit_blended_shape(const PointRange& points, const NamedParameters& np = CGA
   // box/cylinder scan, 70 % of the points), a start that no split repairs.
   const bool evolve = evolution_settings.maximum_number_of_parts > 1;
   const bool robust = settings_from_named_parameters(np).robust_weighting != Robust_weighting::None;
-  Fit_result<Geom_traits> first_fit = evolve ? fit_superquadric(points, parameters::robust_weighting(Robust_weighting::None, np))
-                                             : fit_superquadric(points, np);
+  // (Its rest, the start of evolution, is not settled early: see Part_evolution.)
+  Fit_result<Geom_traits> first_fit =
+    evolve ? fit_superquadric(points, parameters::settling_tolerance(0., parameters::robust_weighting(Robust_weighting::None, np)))
+           : fit_superquadric(points, np);
   Result result{make_blended_model(first_fit.model), {}, {}, first_fit.metrics, first_fit.stray_points, std::move(first_fit)};
   const Fit_result<Geom_traits>& first = result.first_fit;
   result.status.converged = first.metrics.converged;
@@ -302,8 +304,11 @@ auto fit_blended_shape(const PointRange& points, const NamedParameters& np = CGA
         // points): free, they are the parameters that keep the fit from rest
         // (Blended_shape::hold_blending_region()); held, the final fit on
         // the box/cylinder scan rests in 28 iterations, not 51.
+        // Its rest decides nothing more: settled as the caller asks (evolution's were not).
+        Fitting_settings final_settings = rest_fitter->settings();
+        final_settings.settling_tolerance = settings_from_named_parameters(np).settling_tolerance;
         final_fit = std::make_unique<Fitter>(kept, internal::with_blending_regions_held(evolution.model(), true),
-                                             rest_fitter->settings());
+                                             final_settings);
         final_fit->start_from_chart_points(starts);
         if(!result.status.aborted)
         {

@@ -50,8 +50,9 @@ struct Step_report
   /// and a parameter direction; 0 at a rest state, scale-free.
   double scaled_force = 0.;
   bool accepted = false;      ///< whether the parameters moved
-  /// No step can lower the energy any more: the proposed change is negligible, or the
-  /// damping (Gauss-Newton) or the step-size reduction (explicit) is exhausted.
+  /// No step can lower the energy any more: the proposed change is negligible, the
+  /// damping (Gauss-Newton) or the step-size reduction (explicit) is exhausted, or the
+  /// trials the true energy refused promised at most Fitting_settings::settling_tolerance.
   bool stalled = false;
   /// Gauss-Newton: whether the step of the last attempt is the maximum of the
   /// quadratic model in the box trust region (see maximum_step). False when
@@ -342,6 +343,8 @@ public:
   a step get a closest-point sweep. A Gauss-Newton proposal the model
   refuses (a blending region out of its chart) holds the blending-region
   parameters for the step's remaining tries instead of raising the damping.
+  A step whose swept trials the true energy all refused, each having
+  promised at most `settling_tolerance` of it, stalls: a rest state.
   */
   Step_report step()
   {
@@ -367,7 +370,8 @@ public:
     else
       explicit_step(trials, report);
     report.stalled = !report.accepted &&
-                     (trials.negligible || m_lambda >= 1e10 || m_dt_scale <= 1e-8 || !(report.energy_before > 0.));
+                     (trials.negligible || m_lambda >= 1e10 || m_dt_scale <= 1e-8 || !(report.energy_before > 0.) ||
+                      (trials.sweeps > 0 && trials.swept_decrease <= m_settings.settling_tolerance));
     if(!report.accepted)
       position_meshes(m_model); // a rejected trial left the meshes where it was
     return report;
@@ -556,6 +560,8 @@ private:
             "force_tolerance must be a finite number >= 0");
     require(s.rest_tolerance >= 0. && s.rest_tolerance < 1.,
             "rest_tolerance must be in [0, 1) (a relative energy decrease per step; 1e-4 is the default)");
+    require(s.settling_tolerance >= 0. && s.settling_tolerance < 1.,
+            "settling_tolerance must be in [0, 1) (a relative energy decrease per step; 1e-3 is the default)");
     require(s.maximum_size_factor > 0., "maximum_size_factor must be > 0");
     require(s.placement_stiffness >= 0. && std::isfinite(s.placement_stiffness),
             "placement_stiffness must be a finite number >= 0");
@@ -771,6 +777,7 @@ private:
     bool refused = false;    // the model refused the last trial's parameters
     bool regions_held = false; // the blending-region parameters stay as they are (after a refusal)
     int sweeps = 0;          // closest-point sweeps spent on trials
+    double swept_decrease = 0.; // the largest relative decrease at fixed correspondences of a swept trial
   };
 
   // The acceptance test of one proposed change `delta` (clamped to the
@@ -832,6 +839,7 @@ private:
     }
     if(++trials.sweeps > 2)
       return false;
+    trials.swept_decrease = (std::max)(trials.swept_decrease, (E0 - E1) / E0);
     Correspondences moved = attach(trial, active, &corr, true);
     const double F1 = true_energy(moved.distance, corr.loss) + spring1;
     if(!(F1 <= report.energy_before))

@@ -64,6 +64,16 @@ struct Fitting_settings
   /// at most this fraction counts as at rest whatever the forces. 0: only
   /// vanishing forces (`energy_tolerance` and `force_tolerance`) are a rest state.
   double rest_tolerance = 1e-4;
+  /// A step whose trials the true energy refuses (with the trial's closest
+  /// points) although, at the step's fixed correspondences, each promised
+  /// to lower it by at most this fraction, counts as at rest: near a rest
+  /// state the point-to-plane model promises a little that the moving
+  /// closest points (and the robust loss's re-estimated parameters) take
+  /// back, and the damping would otherwise grow by a factor of 8 a trial
+  /// until the step is negligible, several steps of two closest-point sweeps
+  /// each. 0: only that growth ends such steps. The fits of part evolution
+  /// set it to 0 (see Part_evolution).
+  double settling_tolerance = 1e-3;
   int mesh_resolution = 10;               ///< chart tessellation (rings from pole to equator)
   int projection_iterations = 20;         ///< at most this many Gauss-Newton steps from a start to the closest point on the surface
   std::size_t subset_size = 4000;         ///< points used before the all-points phase (0: all from the start)
