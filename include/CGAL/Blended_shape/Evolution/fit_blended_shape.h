@@ -220,7 +220,8 @@ auto fit_blended_shape(const PointRange& points, const NamedParameters& np = CGA
   // of parts fits the largest part and takes the others for strays (on the
   // box/cylinder scan, 70 % of the points), a start that no split repairs.
   const bool evolve = evolution_settings.maximum_number_of_parts > 1;
-  const bool robust = settings_from_named_parameters(np).robust_weighting != Robust_weighting::None;
+  const Fitting_settings fitting = settings_from_named_parameters(np);
+  const bool robust = fitting.robust_weighting != Robust_weighting::None;
   // (Its rest, the start of evolution, is not settled early: see Part_evolution.)
   Fit_result<Geom_traits> first_fit =
     evolve ? fit_superquadric(points, parameters::settling_tolerance(0., parameters::robust_weighting(Robust_weighting::None, np)))
@@ -255,7 +256,7 @@ auto fit_blended_shape(const PointRange& points, const NamedParameters& np = CGA
     const bool sampled = maximum > 0 && fitted > maximum;
     Part_evolution<Geom_traits> evolution(sampled ? internal::evolution_points(normalized, isolated, maximum) : normalized,
                                           make_blended_model(normalization.model_to_normalized(first.model)),
-                                          settings_from_named_parameters(np), evolution_settings);
+                                          fitting, evolution_settings);
     // The split test asks as much of a split as on all the points
     // (Part_evolution::set_described_points()).
     if(sampled)
@@ -306,7 +307,7 @@ auto fit_blended_shape(const PointRange& points, const NamedParameters& np = CGA
         // the box/cylinder scan rests in 28 iterations, not 51.
         // Its rest decides nothing more: settled as the caller asks (evolution's were not).
         Fitting_settings final_settings = rest_fitter->settings();
-        final_settings.settling_tolerance = settings_from_named_parameters(np).settling_tolerance;
+        final_settings.settling_tolerance = fitting.settling_tolerance;
         final_fit = std::make_unique<Fitter>(kept, internal::with_blending_regions_held(evolution.model(), true),
                                              final_settings);
         final_fit->start_from_chart_points(starts);
