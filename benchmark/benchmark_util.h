@@ -10,6 +10,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <cstdlib>
 #include <cstring>
 #include <fstream>
 #include <sstream>
@@ -18,6 +19,16 @@
 #include <thread>
 
 namespace blended_shape_benchmark {
+
+// A command-line count: a whole number of decimal digits only (no sign, no
+// trailing text), into `value`; false otherwise, `value` unchanged.
+inline bool parse_count(const char* text, std::size_t& value)
+{
+  if(text == nullptr || *text == '\0' || std::strspn(text, "0123456789") != std::strlen(text) || std::strlen(text) > 9)
+    return false;
+  value = std::size_t(std::strtoul(text, nullptr, 10));
+  return true;
+}
 
 /// One line on the machine and build: CPU model, cores, compiler, CGAL.
 inline std::string machine_description()

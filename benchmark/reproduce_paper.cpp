@@ -8,13 +8,16 @@
 // ours. Prints Markdown; --csv FILE also writes CSV.
 //
 //   reproduce_paper [--evolve] [--splits forces|creases|both] [--evolution-points N] [--robust] [--threads N]
-//                   [--csv FILE] [--markdown FILE]
+//                   [--seed N] [--csv FILE] [--markdown FILE]
 //
 // The fits use the paper's least squares (Robust_weighting::None): its data
 // have no strays, and the robust default may take a part of a multi-part
 // object for strays and leave it out of the RMS figures. --robust: the default.
 // --threads N: the fits on N threads (default 1, the paper's one processor;
 // 0: all cores). The results do not depend on it, only the seconds.
+// --seed N: Fitting_settings::random_seed (default 0), which draws the point
+// subsets of the multi-start search: other seeds show how much a result
+// depends on which local minimum of the first fit evolution starts from.
 // --evolve: fit_blended_shape() (its least-squares start and evolution; with
 // --robust a one-part result is the robust fit); the iteration / sweep and
 // Chamfer columns are then left empty (the model is not one superquadric).
@@ -160,6 +163,7 @@ int main(int argc, char** argv)
 {
   std::string csv, markdown;
   std::size_t threads = 1;
+  std::size_t seed = BS::Fitting_settings().random_seed;
   bool robust = false, evolve = false;
   std::size_t evolution_points = BS::Evolution_settings().maximum_evolution_points;
   BS::Split_source split_source = BS::Evolution_settings().split_source;
@@ -169,11 +173,14 @@ int main(int argc, char** argv)
     if(std::strcmp(argv[i], "--csv") == 0 && i + 1 < argc) csv = argv[++i];
     else if(std::strcmp(argv[i], "--robust") == 0) robust = true;
     else if(std::strcmp(argv[i], "--evolve") == 0) evolve = true;
-    else if(std::strcmp(argv[i], "--threads") == 0 && i + 1 < argc && std::atoi(argv[i + 1]) >= 0)
-      threads = std::size_t(std::atoi(argv[++i]));
+    else if(std::strcmp(argv[i], "--threads") == 0 && i + 1 < argc && BB::parse_count(argv[i + 1], threads))
+      ++i;
     else if(std::strcmp(argv[i], "--markdown") == 0 && i + 1 < argc) markdown = argv[++i];
-    else if(std::strcmp(argv[i], "--evolution-points") == 0 && i + 1 < argc && std::atoi(argv[i + 1]) >= 0)
-      evolution_points = std::size_t(std::atoi(argv[++i]));
+    else if(std::strcmp(argv[i], "--seed") == 0 && i + 1 < argc && BB::parse_count(argv[i + 1], seed))
+      ++i;
+    else if(std::strcmp(argv[i], "--evolution-points") == 0 && i + 1 < argc &&
+            BB::parse_count(argv[i + 1], evolution_points))
+      ++i;
     else if(std::strcmp(argv[i], "--splits") == 0 && i + 1 < argc && (source = BS::split_source_from_name(argv[i + 1])))
     {
       split_source = *source;
@@ -182,7 +189,7 @@ int main(int argc, char** argv)
     else
     {
       std::cerr << "usage: reproduce_paper [--evolve] [--splits forces|creases|both] [--evolution-points N] [--robust] "
-                   "[--threads N] [--csv FILE] [--markdown FILE]\n";
+                   "[--threads N] [--seed N] [--csv FILE] [--markdown FILE]\n";
       return 2;
     }
   }
@@ -217,7 +224,7 @@ int main(int argc, char** argv)
 
   std::ostringstream md, cs;
   md << "Machine: " << BB::machine_description() << "; threads: "
-     << (threads == 0 ? std::string("all cores") : std::to_string(threads)) << "; weighting: "
+     << (threads == 0 ? std::string("all cores") : std::to_string(threads)) << "; seed: " << seed << "; weighting: "
      << (robust ? "robust (Mixture, the default)" : "the paper's least squares") << "; "
      << (evolve ? std::string("fit_blended_shape() (part evolution, splits from ") +
                     BS::split_source_name(split_source) + ")"
@@ -232,7 +239,8 @@ int main(int argc, char** argv)
   for(const Experiment& e : experiments)
   {
     const auto np = BS::parameters::number_of_threads(
-      threads, BS::parameters::robust_weighting(robust ? BS::Robust_weighting::Mixture : BS::Robust_weighting::None));
+      threads, BS::parameters::robust_weighting(robust ? BS::Robust_weighting::Mixture : BS::Robust_weighting::None,
+                                                CGAL::parameters::random_seed(unsigned(seed))));
     Fit_figures f;
     std::string chamfer = "-";
     const double diag = BS::testing::bounding_box_diagonal(e.points);
