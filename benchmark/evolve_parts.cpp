@@ -134,12 +134,13 @@ int main(int argc, char** argv)
   for(int i = 1; i < argc; ++i)
   {
     std::optional<BS::Split_source> source;
-    if(std::strcmp(argv[i], "--threads") == 0 && i + 1 < argc)
-      threads = std::size_t(std::atoi(argv[++i]));
+    if(std::strcmp(argv[i], "--threads") == 0 && i + 1 < argc && blended_shape_benchmark::parse_count(argv[i + 1], threads))
+      ++i;
     else if(std::strcmp(argv[i], "--meshes-only") == 0)
       meshes_only = true;
-    else if(std::strcmp(argv[i], "--evolution-points") == 0 && i + 1 < argc && std::atoi(argv[i + 1]) >= 0)
-      evolution_points = std::size_t(std::atoi(argv[++i]));
+    else if(std::strcmp(argv[i], "--evolution-points") == 0 && i + 1 < argc &&
+            blended_shape_benchmark::parse_count(argv[i + 1], evolution_points))
+      ++i;
     else if(std::strcmp(argv[i], "--splits") == 0 && i + 1 < argc && (source = BS::split_source_from_name(argv[i + 1])))
     {
       split_source = *source;

@@ -266,27 +266,29 @@ int main(int argc, char** argv)
   bool quick = false;
   int equivariance = 0, fits = 10, similar_search = 0;
   double outliers = -1., outlier_box = 2.;
-  std::size_t only_points = 0, threads = 0;
+  std::size_t only_points = 0, threads = 0, count = 0;
   std::string output;
   for(int i = 1; i < argc; ++i)
   {
     if(std::strcmp(argv[i], "--quick") == 0) quick = true;
     else if(std::strcmp(argv[i], "--output") == 0 && i + 1 < argc) output = argv[++i];
-    else if(std::strcmp(argv[i], "--points") == 0 && i + 1 < argc && std::atoi(argv[i + 1]) > 0)
-      only_points = std::size_t(std::atoi(argv[++i]));
-    else if(std::strcmp(argv[i], "--threads") == 0 && i + 1 < argc && std::atoi(argv[i + 1]) >= 0)
-      threads = std::size_t(std::atoi(argv[++i]));
-    else if(std::strcmp(argv[i], "--equivariance") == 0 && i + 1 < argc && std::atoi(argv[i + 1]) > 0)
-      equivariance = std::atoi(argv[++i]);
+    else if(std::strcmp(argv[i], "--points") == 0 && i + 1 < argc && BB::parse_count(argv[i + 1], count) && count > 0)
+      only_points = count, ++i;
+    else if(std::strcmp(argv[i], "--threads") == 0 && i + 1 < argc && BB::parse_count(argv[i + 1], threads))
+      ++i;
+    else if(std::strcmp(argv[i], "--equivariance") == 0 && i + 1 < argc && BB::parse_count(argv[i + 1], count) &&
+            count > 0)
+      equivariance = int(count), ++i;
     else if(std::strcmp(argv[i], "--outliers") == 0 && i + 1 < argc && std::atof(argv[i + 1]) >= 0. &&
             std::atof(argv[i + 1]) < 1.)
       outliers = std::atof(argv[++i]);
     else if(std::strcmp(argv[i], "--outlier-box") == 0 && i + 1 < argc && std::atof(argv[i + 1]) >= 1.)
       outlier_box = std::atof(argv[++i]);
-    else if(std::strcmp(argv[i], "--fits") == 0 && i + 1 < argc && std::atoi(argv[i + 1]) > 0)
-      fits = std::atoi(argv[++i]);
-    else if(std::strcmp(argv[i], "--similar-search") == 0 && i + 1 < argc && std::atoi(argv[i + 1]) > 0)
-      similar_search = std::atoi(argv[++i]);
+    else if(std::strcmp(argv[i], "--fits") == 0 && i + 1 < argc && BB::parse_count(argv[i + 1], count) && count > 0)
+      fits = int(count), ++i;
+    else if(std::strcmp(argv[i], "--similar-search") == 0 && i + 1 < argc && BB::parse_count(argv[i + 1], count) &&
+            count > 0)
+      similar_search = int(count), ++i;
     else
     {
       std::cerr << "usage: fit_single_superquadric [--quick] [--points N] [--threads N] [--output FILE]\n"
