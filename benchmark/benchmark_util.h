@@ -20,8 +20,9 @@
 
 namespace blended_shape_benchmark {
 
-// A command-line count: a whole number of decimal digits only (no sign, no
-// trailing text), into `value`; false otherwise, `value` unchanged.
+// A command-line count: 1 to 9 decimal digits only (no sign, no trailing
+// text; any count these programs take), into `value`; false otherwise,
+// `value` unchanged.
 inline bool parse_count(const char* text, std::size_t& value)
 {
   if(text == nullptr || *text == '\0' || std::strspn(text, "0123456789") != std::strlen(text) || std::strlen(text) > 9)

@@ -252,6 +252,11 @@ public:
   typedef Deformable_model_fitter<Model> Fitter;      ///< its fitter
   typedef typename GeomTraits::Point_3 Point_3;       ///< the point type
 
+  /// The `settling_tolerance` of every fit of evolution (and of the first
+  /// fit it starts from, fit_blended_shape()): 0, a rest state waits for the
+  /// damping (see the class description).
+  static constexpr double settling_tolerance = 0.;
+
   /// Evolution of `initial` fitted to `points` (copied). The fits use
   /// `fitting` with least-squares weighting and `settling_tolerance` 0 (see
   /// the class description), on all points at every step (no subset phase).
@@ -279,7 +284,7 @@ public:
     Fitting_settings least_squares = fitting;
     least_squares.robust_weighting = Robust_weighting::None;
     least_squares.subset_size = 0;
-    least_squares.settling_tolerance = 0.; // see Part_evolution
+    least_squares.settling_tolerance = settling_tolerance;
     m_fitter = std::make_unique<Fitter>(m_kept, initial, least_squares);
   }
 
@@ -651,7 +656,8 @@ private:
                                   std::to_string(proposal.segment));
     where->segment = proposal.segment;
     const auto part = fit_superquadric(
-      members, parameters::settling_tolerance(0., parameters::number_of_threads(m_fitter->settings().number_of_threads)));
+      members, parameters::settling_tolerance(settling_tolerance,
+                                              parameters::number_of_threads(m_fitter->settings().number_of_threads)));
     return add_gradual_part(base, *where, lengthened_into_base(base, where->component, part.model, members));
   }
 

@@ -224,7 +224,8 @@ auto fit_blended_shape(const PointRange& points, const NamedParameters& np = CGA
   const bool robust = fitting.robust_weighting != Robust_weighting::None;
   // (Its rest, the start of evolution, is not settled early: see Part_evolution.)
   Fit_result<Geom_traits> first_fit =
-    evolve ? fit_superquadric(points, parameters::settling_tolerance(0., parameters::robust_weighting(Robust_weighting::None, np)))
+    evolve ? fit_superquadric(points, parameters::settling_tolerance(Part_evolution<Geom_traits>::settling_tolerance,
+                                                                parameters::robust_weighting(Robust_weighting::None, np)))
            : fit_superquadric(points, np);
   Result result{make_blended_model(first_fit.model), {}, {}, first_fit.metrics, first_fit.stray_points, std::move(first_fit)};
   const Fit_result<Geom_traits>& first = result.first_fit;
