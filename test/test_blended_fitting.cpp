@@ -681,6 +681,31 @@ void test_held_parameter(const Model<K>& truth)
   {
     BS_CHECK(std::string(e.what()).find("out of range") != std::string::npos, e.what());
   }
+  // a component held: every parameter of it (placement and shape) and no other
+  BS::Blended_shape<K> part_held = shape;
+  part_held.hold_component(1);
+  std::size_t held_count = 0;
+  for(std::size_t i = 0; i < part_held.number_of_parameters(); ++i)
+  {
+    const bool of_part = part_held.parameter_name(i).rfind("c1.", 0) == 0;
+    held_count += of_part ? 1 : 0;
+    BS_CHECK(part_held.is_fixed_parameter(i) == (of_part || shape.is_fixed_parameter(i)),
+             part_held.parameter_name(i) << (of_part ? " is not held" : " is held with component 1"));
+  }
+  BS_CHECK(held_count == part_held.component(1).shape().number_of_parameters() + BS::Blended_shape<K>::number_of_placement_parameters,
+           "component 1 has " << held_count << " parameters named c1.*");
+  part_held.hold_component(1, false);
+  for(std::size_t i = 0; i < part_held.number_of_parameters(); ++i)
+    BS_CHECK(part_held.is_fixed_parameter(i) == shape.is_fixed_parameter(i), part_held.parameter_name(i) << " still held");
+  try
+  {
+    part_held.hold_component(part_held.number_of_components());
+    BS_CHECK(false, "hold_component() accepted a component index out of range");
+  }
+  catch(const std::out_of_range& e)
+  {
+    BS_CHECK(std::string(e.what()).find("out of range") != std::string::npos, e.what());
+  }
   // the structure's fixed parameters stay fixed; a change of structure releases holds
   BS::Blended_shape<K> glued = body_with_nose<K>();
   const std::size_t glued_h = parameter_index(glued, "b0.h");

@@ -364,6 +364,23 @@ public:
       hold_parameter(blend_offset(b) + j, held);
   }
 
+  /*!
+  Holds (`held` true) or releases every parameter of component `c`: its
+  placement (for a component other than the root) and its shape, with
+  hold_parameter(). Evolution holds a gradual part so while it lowers the
+  part's `h` in stages (Part_evolution).
+  \throws std::out_of_range if `c` is not a component index.
+  */
+  void hold_component(std::size_t c, bool held = true)
+  {
+    if(c >= m_components.size())
+      throw std::out_of_range("Blended_shape::hold_component: component index " + std::to_string(c) +
+                              " out of range (" + std::to_string(m_components.size()) + " components)");
+    const std::size_t end = shape_offset(c) + m_components[c].shape().number_of_parameters();
+    for(std::size_t i = component_offset(c); i < end; ++i)
+      hold_parameter(i, held);
+  }
+
 private:
   bool compute_fixed(std::size_t i) const
   {

@@ -14,9 +14,12 @@
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
+#include <functional>
 #include <numeric>
+#include <queue>
 #include <stdexcept>
 #include <string>
+#include <tuple>
 #include <vector>
 
 namespace CGAL {
@@ -40,7 +43,60 @@ struct Crease_segment_settings
   std::size_t neighbours = 16; ///< `k` of the neighbourhoods (normals and edges)
   double crease_angle = 30.;   ///< degrees: a concave edge turns the normal by more than this
   double edge_factor = 3.;     ///< neighbours farther than this times the median spacing are not joined
+  /// How the normals are oriented: `false`, each along its own `outward[i]`;
+  /// `true`, consistently over the edges (from each piece's first point,
+  /// across the edge that turns the normal least first, as Hoppe et al.,
+  /// SIGGRAPH 1992, orient tangent planes), then each connected piece of
+  /// the edges turned as most of its points' `outward[i]` say.
+  bool propagate_orientation = false;
 };
+
+namespace internal {
+
+// Crease_segment_settings::propagate_orientation: the normals oriented over
+// the edges (neighbours[i] with is_edge(i, j)), within each piece reached
+// from its smallest index, across the edge of least turn (smallest
+// 1 - |n_i . n_j|, ties by index) first (Prim's order), each normal along
+// the one it is reached from; then each piece flipped if more of its
+// normals point against `outward` than along it.
+template <class IsEdge>
+void propagate_orientation(const std::vector<std::vector<std::size_t>>& neighbours, const IsEdge& is_edge,
+                           const std::vector<Eigen::Vector3d>& outward, std::vector<Eigen::Vector3d>& normal)
+{
+  const std::size_t n = normal.size();
+  std::vector<bool> reached(n, false);
+  typedef std::tuple<double, std::size_t, std::size_t> Edge; // turn, to, from
+  for(std::size_t first = 0; first < n; ++first)
+  {
+    if(reached[first])
+      continue;
+    std::vector<std::size_t> piece;
+    std::priority_queue<Edge, std::vector<Edge>, std::greater<Edge>> queue;
+    queue.emplace(0., first, first);
+    while(!queue.empty())
+    {
+      const auto [turn, i, from] = queue.top();
+      queue.pop();
+      if(reached[i])
+        continue;
+      reached[i] = true;
+      piece.push_back(i);
+      if(normal[i].dot(normal[from]) < 0.)
+        normal[i] = -normal[i];
+      for(std::size_t j : neighbours[i])
+        if(!reached[j] && is_edge(i, j))
+          queue.emplace(1. - std::abs(normal[i].dot(normal[j])), j, i);
+    }
+    std::ptrdiff_t vote = 0;
+    for(std::size_t i : piece)
+      vote += normal[i].dot(outward[i]) < 0. ? -1 : 1;
+    if(vote < 0)
+      for(std::size_t i : piece)
+        normal[i] = -normal[i];
+  }
+}
+
+} // namespace internal
 
 /*!
 \ingroup PkgBlendedShapeEvolution
@@ -60,7 +116,13 @@ closest point): it orients the estimated normals. The segmentation:
    `n_i`, the direction of least variance of these neighbours (PCA),
    oriented along `outward[i]`;
 2. the edges: pairs of neighbours closer than `edge_factor` times the median
-   distance to the `k`-th neighbour (none across a jump in depth);
+   distance to the `k`-th neighbour (none across a jump in depth); with
+   `propagate_orientation`, the normals are then oriented over the edges
+   (see Crease_segment_settings): where `outward` is wrong in places (a
+   model far from the points: its closest point on a far side), the
+   orientation of each point's own direction turns convex folds into
+   concave ones there, while the propagated one does not, as long as most
+   directions of each piece are right;
 3. an edge `(i, j)` is concave if the normals turn by more than
    `crease_angle` and `(n_i - n_j) . (p_i - p_j) < 0` (the convexity test
    of locally convex connected patches, Stein et al., CVPR 2014: on a
@@ -152,6 +214,8 @@ inline Crease_segments crease_segments(const std::vector<Eigen::Vector3d>& point
   const double longest_edge = settings.edge_factor * sorted[n / 2];
   const double cos_crease = std::cos(settings.crease_angle * CGAL_PI / 180.);
   auto is_edge = [&](std::size_t i, std::size_t j) { return (points[i] - points[j]).norm() <= longest_edge; };
+  if(settings.propagate_orientation)
+    internal::propagate_orientation(neighbours, is_edge, outward, normal);
 
   // 3. crease points
   std::vector<bool> crease(n, false);
