@@ -489,7 +489,7 @@ public:
   put it: the part comes in by steps of `h` of `1 / blend_stages` (each
   moves the surface inside the region that share of the way from the base
   towards the part), never all at once. (The first split's new base does
-  replace the one superquadric at once: see with_gradual_part().) Any other
+  replace the one superquadric at once, before the part comes in.) Any other
   proposal is a split at `h = 0` (apply_split()). Records
   the event (not for a refused split) and calls the visitor's on_split() or
   on_undo(). Returns whether the split was kept.

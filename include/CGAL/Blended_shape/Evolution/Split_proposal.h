@@ -451,7 +451,7 @@ A part blended onto the base where its pole is has its region at the
 middle of a chart, where the chart is least distorted: a box whose axes a
 fit ordered otherwise has that face across the margins of both charts
 (on the box/cylinder scan, the cylinder's blend then rested at 0.14 % of
-the diagonal against 0.02 %).
+the diagonal against 0.014 %).
 */
 template <class GeomTraits>
 Deformable_model<Superquadric_ellipsoid<GeomTraits>>
@@ -494,12 +494,10 @@ that chart (footprint_grid_half_size) whose surface points lie inside
 `part` (a superquadric placed in the model's frame: the fit to the crease
 segment, lengthened_into_base()), the connected piece of them nearest the
 proposal's centre: the curve along which base and part meet. The region
-of the segment's closest points is
-not, on one view of a part: its hidden side has no points (on the
-box/cylinder scan, the cylinder's region was off its centre by 40 % of
-its radius). Nothing if no grid point
-of the chart lies inside the part, or the ellipse does not fit the chart
-(shrink_to_fit() then decides on the proposal as it is).
+of the segment's closest points is not, on one view of a part: its hidden
+side has no points (on the box/cylinder scan, the cylinder's region was
+off its centre by 40 % of its radius). Nothing if no grid point of the
+chart lies inside the part, or the ellipse does not fit the chart.
 */
 template <class GeomTraits>
 std::optional<Split_proposal> region_inside_part(const Deformable_blended_model<GeomTraits>& model,
