@@ -1530,6 +1530,21 @@ void test_region_inside_part()
   const Part away(BS::Superquadric_ellipsoid<K>(0.3, 0.3, 0.5, 0.2, 1.), Eigen::Vector3d(0., 0., 3.),
                   Eigen::Vector4d(1., 0., 0., 0.));
   BS_CHECK(!BS::region_inside_part(sphere, proposal, away), "a region under a part clear of the base");
+  for(const auto& [component, chart] : {std::pair<std::size_t, std::size_t>(1, 0), {0, 2}})
+  {
+    BS::Split_proposal bad = proposal;
+    bad.component = component;
+    bad.chart = chart;
+    try
+    {
+      BS::region_inside_part(sphere, bad, cylinder);
+      BS_CHECK(false, "region_inside_part accepted component " << component << ", chart " << chart);
+    }
+    catch(const std::invalid_argument& e)
+    {
+      BS_CHECK(std::string(e.what()).find(component == 1 ? "component" : "chart 2") != std::string::npos, e.what());
+    }
+  }
 }
 
 // Evolution from crease segments (Split_source::Crease_segments) on the

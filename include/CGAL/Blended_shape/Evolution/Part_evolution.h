@@ -16,6 +16,8 @@
 #include <CGAL/Blended_shape/IO/check_points.h>
 #include <CGAL/Blended_shape/internal/isolated_points.h>
 
+#include <CGAL/centroid.h>
+
 #include <Eigen/Core>
 
 #include <cmath>
@@ -674,7 +676,12 @@ private:
       m_last_fit.converged = fitted.metrics.converged;
       m_last_fit.aborted = fitted.metrics.aborted;
       if(!m_last_fit.aborted)
-        base = make_blended_model(pole_towards(fitted.model, centroid(members) - fitted.model.translation()));
+      {
+        const Point_3 c = CGAL::centroid(members.begin(), members.end());
+        base = make_blended_model(pole_towards(
+          fitted.model, Eigen::Vector3d(CGAL::to_double(c.x()), CGAL::to_double(c.y()), CGAL::to_double(c.z())) -
+                          fitted.model.translation()));
+      }
     }
     else
     {
@@ -703,15 +710,6 @@ private:
       if(const std::optional<Split_proposal> fitted = shrink_to_fit(base->shape(), *footprint))
         where = fitted;
     return add_gradual_part(*base, *where, lengthened);
-  }
-
-  // The mean of `points`.
-  static Eigen::Vector3d centroid(const std::vector<Point_3>& points)
-  {
-    Eigen::Vector3d sum = Eigen::Vector3d::Zero();
-    for(const Point_3& p : points)
-      sum += Eigen::Vector3d(CGAL::to_double(p.x()), CGAL::to_double(p.y()), CGAL::to_double(p.z()));
-    return sum / double(points.size());
   }
 
   // The indices (increasing) of the points in crease segment `s`.

@@ -498,17 +498,23 @@ of the segment's closest points is not, on one view of a part: its hidden
 side has no points (on the box/cylinder scan, the cylinder's region was
 off its centre by 40 % of its radius). Nothing if no grid point of the
 chart lies inside the part, or the ellipse does not fit the chart.
+\throws std::invalid_argument if the proposal's component or chart is not one of `model`.
 */
 template <class GeomTraits>
 std::optional<Split_proposal> region_inside_part(const Deformable_blended_model<GeomTraits>& model,
                                                  const Split_proposal& proposal,
                                                  const Deformable_model<Superquadric_ellipsoid<GeomTraits>>& part)
 {
+  const auto [R_base, t_base] = internal::component_frame(model, proposal.component); // (checks the component)
   const Component_shape& primitive = model.shape().component(proposal.component).shape();
+  if(proposal.chart >= primitive.number_of_charts())
+    throw std::invalid_argument("region_inside_part: chart " + std::to_string(proposal.chart) + " of component " +
+                                std::to_string(proposal.component) + " does not exist (it has " +
+                                std::to_string(primitive.number_of_charts()) +
+                                "); pass a proposal of this model (propose_segment_split())");
   const Chart_domain domain = primitive.chart_domain(proposal.chart);
   if(domain.kind != Chart_kind::Disk)
     return std::nullopt; // (crease segments' proposals are on superquadrics' disk charts)
-  const auto [R_base, t_base] = internal::component_frame(model, proposal.component);
   const Eigen::Matrix3d R_part = part.rotation();
   const auto a = part.shape().parameters(); // a1, a2, a3, e1, e2
   auto inside_part = [&](const Eigen::Vector3d& x) {
