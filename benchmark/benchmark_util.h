@@ -12,6 +12,8 @@
 
 #include <cstdlib>
 #include <cstring>
+#include <cmath>
+#include <cstdlib>
 #include <fstream>
 #include <sstream>
 #include <stdexcept>
@@ -28,6 +30,20 @@ inline bool parse_count(const char* text, std::size_t& value)
   if(text == nullptr || *text == '\0' || std::strspn(text, "0123456789") != std::strlen(text) || std::strlen(text) > 9)
     return false;
   value = std::size_t(std::strtoul(text, nullptr, 10));
+  return true;
+}
+
+// A command-line number: a whole finite decimal number (strtod, no trailing
+// text), into `value`; false otherwise, `value` unchanged.
+inline bool parse_number(const char* text, double& value)
+{
+  if(text == nullptr || *text == '\0')
+    return false;
+  char* end = nullptr;
+  const double x = std::strtod(text, &end);
+  if(end == text || *end != '\0' || !std::isfinite(x))
+    return false;
+  value = x;
   return true;
 }
 

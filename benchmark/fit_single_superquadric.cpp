@@ -5,7 +5,7 @@
 // 0.2 % of the bounding-box diagonal, for 2k / 20k / 200k points with the
 // default (Gauss-Newton) integrator and 2k points with the explicit one. Prints a Markdown table (also to --output FILE).
 //
-//   fit_single_superquadric [--quick] [--points N] [--threads N] [--output FILE]
+//   fit_single_superquadric [--quick] [--points N] [--threads N] [--area-weight W] [--output FILE]
 //   fit_single_superquadric --equivariance N [--output FILE]
 //   fit_single_superquadric --outliers FRACTION --outlier-box FACTOR [--fits N] [--output FILE]
 //   fit_single_superquadric --similar-search N [--output FILE]
@@ -14,6 +14,7 @@
 // any other N (20 fits of each view with the default integrator).
 // --threads N: the fits on N threads (Fitting_settings::number_of_threads;
 // default 0, all cores): the results are the same, only the times change.
+// --area-weight W: Fitting_settings::area_weight (default 0: no area term).
 //
 // With --equivariance, it fits N random full views of 2000 points twice, as
 // sampled and rotated, translated and scaled by 3.7, and reports how far the
@@ -81,6 +82,7 @@ struct Config
   BS::Integrator integrator;
   int shapes;
   std::size_t threads;
+  double area_weight;
 };
 
 Fit_outcome fit_one(const Config& c, unsigned int shape_seed)
@@ -91,7 +93,9 @@ Fit_outcome fit_one(const Config& c, unsigned int shape_seed)
   const auto pts = BS::testing::synthetic_scan(truth, c.points, c.single_view, 0.002, rng, &sigma);
   const std::size_t limit = c.integrator == BS::Integrator::Explicit ? 3000 : 200;
   const auto r = BS::fit_superquadric(
-    pts, BS::parameters::number_of_threads(c.threads, BS::parameters::integrator(c.integrator)).number_of_iterations(limit));
+    pts, BS::parameters::area_weight(c.area_weight, BS::parameters::number_of_threads(
+                                                      c.threads, BS::parameters::integrator(c.integrator)))
+           .number_of_iterations(limit));
   Fit_outcome o;
   o.iterations = r.metrics.iterations;
   o.iterations_on_all_points = r.metrics.iterations_on_all_points;
@@ -267,6 +271,7 @@ int main(int argc, char** argv)
   int equivariance = 0, fits = 10, similar_search = 0;
   double outliers = -1., outlier_box = 2.;
   std::size_t only_points = 0, threads = 0, count = 0;
+  double area_weight = BS::Fitting_settings().area_weight;
   std::string output;
   for(int i = 1; i < argc; ++i)
   {
@@ -275,6 +280,9 @@ int main(int argc, char** argv)
     else if(std::strcmp(argv[i], "--points") == 0 && i + 1 < argc && BB::parse_count(argv[i + 1], count) && count > 0)
       only_points = count, ++i;
     else if(std::strcmp(argv[i], "--threads") == 0 && i + 1 < argc && BB::parse_count(argv[i + 1], threads))
+      ++i;
+    else if(std::strcmp(argv[i], "--area-weight") == 0 && i + 1 < argc && BB::parse_number(argv[i + 1], area_weight) &&
+            area_weight >= 0.)
       ++i;
     else if(std::strcmp(argv[i], "--equivariance") == 0 && i + 1 < argc && BB::parse_count(argv[i + 1], count) &&
             count > 0)
@@ -291,7 +299,7 @@ int main(int argc, char** argv)
       similar_search = int(count), ++i;
     else
     {
-      std::cerr << "usage: fit_single_superquadric [--quick] [--points N] [--threads N] [--output FILE]\n"
+      std::cerr << "usage: fit_single_superquadric [--quick] [--points N] [--threads N] [--area-weight W] [--output FILE]\n"
                    "       fit_single_superquadric --equivariance N [--output FILE]\n"
                    "       fit_single_superquadric --outliers FRACTION --outlier-box FACTOR [--fits N] "
                    "[--threads N] [--output FILE]\n"
@@ -333,16 +341,17 @@ int main(int argc, char** argv)
     const int shapes = n == 2000 ? 100 : (n == 20000 ? 4 : (n == 200000 ? 2 : 20));
     for(bool single : {false, true})
     {
-      configs.push_back({n, single, BS::Integrator::Gauss_newton, quick ? 2 : shapes, threads});
+      configs.push_back({n, single, BS::Integrator::Gauss_newton, quick ? 2 : shapes, threads, area_weight});
       // The explicit integrator needs 1000 to 2000 iterations: at 2k points
       // that already takes a minute a fit, at 20k about ten.
       if(n == 2000)
-        configs.push_back({n, single, BS::Integrator::Explicit, quick ? 1 : 3, threads});
+        configs.push_back({n, single, BS::Integrator::Explicit, quick ? 1 : 3, threads, area_weight});
     }
   }
   std::ostringstream table;
   table << "Machine: " << BB::machine_description() << "; threads: "
-        << (threads == 0 ? std::string("all cores") : std::to_string(threads)) << "\n\n"
+        << (threads == 0 ? std::string("all cores") : std::to_string(threads)) << "; area weight: " << area_weight
+        << "\n\n"
         << "| points | view | integrator | fits | iterations (mean) | on all points (mean) | ms / iteration | total ms (median / max) "
            "| peak MiB (max) | relative RMS, mean of 3 (%) | RMS / noise sigma (max) | a error (max %) "
            "| e error (max) | RMS > 1.2 sigma |\n"

@@ -8,7 +8,7 @@
 // ours. Prints Markdown; --csv FILE also writes CSV.
 //
 //   reproduce_paper [--evolve] [--splits forces|creases|both] [--evolution-points N] [--robust] [--threads N]
-//                   [--seed N] [--csv FILE] [--markdown FILE]
+//                   [--seed N] [--area-weight W] [--csv FILE] [--markdown FILE]
 //
 // The fits use the paper's least squares (Robust_weighting::None): its data
 // have no strays, and the robust default may take a part of a multi-part
@@ -23,7 +23,8 @@
 // Chamfer columns are then left empty (the model is not one superquadric).
 // --evolution-points N: Evolution_settings::maximum_evolution_points (default
 // 4000; 0: evolution on all points). --splits: Evolution_settings::split_source
-// (default forces).
+// (default forces). --area-weight W: Fitting_settings::area_weight (default
+// 0: the paper's fit, no area term).
 //
 // "iteration / sweep" is the mean time of one iteration of the fit (all its
 // phases: the candidate fits on point subsets and the fit on all points) over
@@ -164,6 +165,7 @@ int main(int argc, char** argv)
   std::string csv, markdown;
   std::size_t threads = 1;
   std::size_t seed = BS::Fitting_settings().random_seed;
+  double area_weight = BS::Fitting_settings().area_weight;
   bool robust = false, evolve = false;
   std::size_t evolution_points = BS::Evolution_settings().maximum_evolution_points;
   BS::Split_source split_source = BS::Evolution_settings().split_source;
@@ -178,6 +180,9 @@ int main(int argc, char** argv)
     else if(std::strcmp(argv[i], "--markdown") == 0 && i + 1 < argc) markdown = argv[++i];
     else if(std::strcmp(argv[i], "--seed") == 0 && i + 1 < argc && BB::parse_count(argv[i + 1], seed))
       ++i;
+    else if(std::strcmp(argv[i], "--area-weight") == 0 && i + 1 < argc && BB::parse_number(argv[i + 1], area_weight) &&
+            area_weight >= 0.)
+      ++i;
     else if(std::strcmp(argv[i], "--evolution-points") == 0 && i + 1 < argc &&
             BB::parse_count(argv[i + 1], evolution_points))
       ++i;
@@ -189,7 +194,7 @@ int main(int argc, char** argv)
     else
     {
       std::cerr << "usage: reproduce_paper [--evolve] [--splits forces|creases|both] [--evolution-points N] [--robust] "
-                   "[--threads N] [--seed N] [--csv FILE] [--markdown FILE]\n";
+                   "[--threads N] [--seed N] [--area-weight W] [--csv FILE] [--markdown FILE]\n";
       return 2;
     }
   }
@@ -225,7 +230,8 @@ int main(int argc, char** argv)
   std::ostringstream md, cs;
   md << "Machine: " << BB::machine_description() << "; threads: "
      << (threads == 0 ? std::string("all cores") : std::to_string(threads)) << "; seed: " << seed << "; weighting: "
-     << (robust ? "robust (Mixture, the default)" : "the paper's least squares") << "; "
+     << (robust ? "robust (Mixture, the default)" : "the paper's least squares") << "; area weight: " << area_weight
+     << "; "
      << (evolve ? std::string("fit_blended_shape() (part evolution, splits from ") +
                     BS::split_source_name(split_source) + ")"
                 : std::string("fit_superquadric() (one superquadric)")) << "\n\n"
@@ -238,9 +244,11 @@ int main(int argc, char** argv)
   std::cout << md.str() << std::flush;
   for(const Experiment& e : experiments)
   {
-    const auto np = BS::parameters::number_of_threads(
-      threads, BS::parameters::robust_weighting(robust ? BS::Robust_weighting::Mixture : BS::Robust_weighting::None,
-                                                CGAL::parameters::random_seed(unsigned(seed))));
+    const auto np = BS::parameters::area_weight(
+      area_weight, BS::parameters::number_of_threads(
+                     threads, BS::parameters::robust_weighting(robust ? BS::Robust_weighting::Mixture
+                                                                      : BS::Robust_weighting::None,
+                                                               CGAL::parameters::random_seed(unsigned(seed)))));
     Fit_figures f;
     std::string chamfer = "-";
     const double diag = BS::testing::bounding_box_diagonal(e.points);

@@ -201,6 +201,8 @@ void test_bad_input(const Temp_dir& dir)
     {quote(dir / "five.xyz") + " --max-parts 0", 2},
     {quote(dir / "five.xyz") + " --no-split --max-parts 3", 2},
     {quote(dir / "five.xyz") + " --splits sideways", 2},
+    {quote(dir / "five.xyz") + " --area-weight -1", 2},
+    {quote(dir / "five.xyz") + " --area-weight x", 2},
     {quote(dir / "five.xyz") + " --json", 2},           // missing value
     {quote(dir / "a.xyz") + " " + quote(dir / "b.xyz"), 2}};
   for(const Case& c : cases)

@@ -15,6 +15,8 @@
 #include <CGAL/Blended_shape/Fitting/fit_superquadric.h>
 #include <CGAL/Blended_shape/Fitting/internal/Box_constrained_step.h>
 #include <CGAL/Blended_shape/Fitting/internal/chart_mesh_deviation_bound.h>
+#include <CGAL/Blended_shape/Fitting/internal/Surface_area.h>
+#include <CGAL/Blended_shape/Fitting/Deformable_blended_model.h>
 #include <CGAL/Blended_shape/Primitives/check_primitive.h>
 #include <blended_shape_testing/compare_superquadrics.h>
 #include <blended_shape_testing/equivariance.h>
@@ -563,7 +565,9 @@ void test_bad_input()
   try { BS::fit_superquadric(ok, BS::parameters::rest_tolerance(1.)); } catch(const std::invalid_argument&) { ++thrown; }
   try { BS::fit_superquadric(ok, BS::parameters::settling_tolerance(-1e-3)); } catch(const std::invalid_argument&) { ++thrown; }
   try { BS::fit_superquadric(ok, BS::parameters::settling_tolerance(std::nan(""))); } catch(const std::invalid_argument&) { ++thrown; }
-  BS_CHECK(thrown == 7, "invalid settings accepted: " << 7 - thrown);
+  try { BS::fit_superquadric(ok, BS::parameters::area_weight(-1e-5)); } catch(const std::invalid_argument&) { ++thrown; }
+  try { BS::fit_superquadric(ok, BS::parameters::area_weight(std::nan(""))); } catch(const std::invalid_argument&) { ++thrown; }
+  BS_CHECK(thrown == 9, "invalid settings accepted: " << 9 - thrown);
   // A flat cloud is a documented result, never NaN.
   std::vector<Point_3> flat;
   for(int i = 0; i < 200; ++i) flat.emplace_back(i % 20, i / 20, 0.);
@@ -571,6 +575,98 @@ void test_bad_input()
   BS_CHECK(r.model.parameters().allFinite() && std::isfinite(r.metrics.rms), "flat cloud");
 }
 
+
+// The surface area of the area term (internal::Surface_area): a sphere's
+// tends to 4 pi as the tessellation is refined (each piece of surface
+// counted once where the two charts overlap), the blended model of one
+// superquadric has the superquadric's area, and the gradient equals central
+// differences of the area at random parameters.
+template <class K>
+void test_surface_area(std::mt19937_64& rng)
+{
+  Model<K> sphere = random_superellipsoid<K>(rng);
+  Eigen::VectorXd q = sphere.parameters();
+  q.segment<3>(7).setOnes();
+  q.tail<2>().setOnes();
+  sphere.set_parameters(q);
+  double previous = 0.;
+  for(int resolution : {3, 6, 24})
+  {
+    const double a = BS::internal::Surface_area<Model<K>>(sphere, resolution).area(sphere);
+    BS_CHECK(a < 4. * CGAL_PI && a > previous, "area of the unit sphere at resolution " << resolution << ": " << a);
+    previous = a;
+  }
+  BS_CHECK(previous > 0.995 * 4. * CGAL_PI, "area of the unit sphere at resolution 24: " << previous);
+  for(int trial = 0; trial < 3; ++trial)
+  {
+    const Model<K> m = random_superellipsoid<K>(rng);
+    const BS::internal::Surface_area<Model<K>> area(m, 6);
+    Eigen::VectorXd gradient;
+    Eigen::MatrixXd H = Eigen::MatrixXd::Zero(Eigen::Index(m.number_of_parameters()), Eigen::Index(m.number_of_parameters()));
+    const double a = area.area_and_gradient(m, gradient, H);
+    BS_CHECK(std::abs(a - area.area(m)) <= 1e-12 * a, "area and area_and_gradient differ");
+    BS_CHECK((H - H.transpose()).norm() <= 1e-12 * H.norm() && H.ldlt().isPositive(), "area matrix not symmetric positive");
+    const auto blended = BS::make_blended_model(m);
+    const double b = BS::internal::Surface_area<BS::Deformable_blended_model<K>>(blended, 6).area(blended);
+    BS_CHECK(std::abs(b - a) <= 1e-9 * a, "the blended model of a superquadric has another area: " << b << " vs " << a);
+    const Eigen::VectorXd p = m.parameters();
+    for(Eigen::Index i = 0; i < p.size(); ++i)
+    {
+      const double h = 1e-6 * (std::abs(p[i]) + 1e-3);
+      Model<K> plus = m, minus = m;
+      Eigen::VectorXd pp = p, pm = p;
+      pp[i] += h;
+      pm[i] -= h;
+      plus.set_parameters(pp);
+      minus.set_parameters(pm);
+      const double fd = (area.area(plus) - area.area(minus)) / (2. * h);
+      BS_CHECK(std::abs(fd - gradient[i]) <= 1e-5 * std::abs(fd) + 1e-6 * a,
+               "area gradient " << i << ": " << gradient[i] << " against " << fd);
+    }
+  }
+}
+
+// The area term (Fitting_settings::area_weight) on one view of an open
+// tube (a limb seen from the front: a half cylinder of radius 0.05 and
+// half-length 0.35, no end caps, noise 0.1 % of its length): with it the
+// fit's length is the data's and its RMS stays near the noise; the same
+// fit at any number of threads gives the same bits; the cloud scaled and
+// moved gives the same relative RMS (the weight is free of the unit and
+// the density). Without the area term nothing in the data stops the
+// length (the measured lengths are printed).
+template <class K>
+void test_area_term(std::mt19937_64& rng)
+{
+  typedef typename K::Point_3 Point_3;
+  const double radius = 0.05, half_length = 0.35, sigma = 0.0007;
+  std::uniform_real_distribution<double> angle(0., CGAL_PI), along(-half_length, half_length);
+  std::normal_distribution<double> noise(0., sigma);
+  std::vector<Point_3> points, moved;
+  for(std::size_t i = 0; i < cloud_size(1500); ++i)
+  {
+    const double t = angle(rng), z = along(rng), r = radius + noise(rng);
+    points.emplace_back(r * std::cos(t), r * std::sin(t), z);
+    moved.emplace_back(40. * r * std::cos(t) + 3., 40. * r * std::sin(t) - 7., 40. * z + 11.);
+  }
+  namespace BSP = BS::parameters;
+  const auto length_of = [](const Model<K>& m) { return m.shape().parameters().template head<3>().maxCoeff(); };
+  const auto plain = BS::fit_superquadric(points, BSP::robust_weighting(BS::Robust_weighting::None));
+  const auto np = BSP::area_weight(0.3, BSP::robust_weighting(BS::Robust_weighting::None));
+  const auto compact = BS::fit_superquadric(points, BSP::number_of_threads(std::size_t(1), np));
+  std::cout << "  open half tube (half-length " << half_length << "): fitted half-length " << length_of(plain.model)
+            << " without the area term, " << length_of(compact.model) << " with it; RMS / noise "
+            << plain.metrics.rms / sigma << ", " << compact.metrics.rms / sigma << std::endl;
+  BS_CHECK(std::abs(length_of(compact.model) / half_length - 1.) < 0.1,
+           "area term: half-length " << length_of(compact.model) << " for " << half_length);
+  BS_CHECK(compact.metrics.rms < 1.5 * sigma, "area term: RMS " << compact.metrics.rms << ", noise " << sigma);
+  const auto two = BS::fit_superquadric(points, BSP::number_of_threads(std::size_t(2), np));
+  BS_CHECK(two.model.parameters() == compact.model.parameters() && two.metrics.iterations == compact.metrics.iterations,
+           "area term: 1 and 2 threads differ");
+  const auto scaled = BS::fit_superquadric(moved, BSP::number_of_threads(std::size_t(1), np));
+  BS_CHECK(std::abs(scaled.metrics.rms_over_bbox_diagonal / compact.metrics.rms_over_bbox_diagonal - 1.) < 1e-6,
+           "area term: the scaled and moved cloud fits to another relative RMS: "
+             << scaled.metrics.rms_over_bbox_diagonal << " vs " << compact.metrics.rms_over_bbox_diagonal);
+}
 
 // One view of a box [-1, 1]^2 x [0, 1] with a cylinder (radius 0.6, height 1)
 // standing on its top (the object of Fig. 19), sampled on the surfaces that
@@ -769,7 +865,8 @@ void test_settings_from_named_parameters()
              none.random_seed == d.random_seed && none.rigid_first == d.rigid_first &&
              none.rigid_iterations == d.rigid_iterations && none.robust_weighting == d.robust_weighting &&
              none.maximum_size_factor == d.maximum_size_factor &&
-             none.placement_stiffness == d.placement_stiffness && none.maximum_running_time == d.maximum_running_time &&
+             none.placement_stiffness == d.placement_stiffness && none.area_weight == d.area_weight &&
+             none.maximum_running_time == d.maximum_running_time &&
              none.number_of_threads == d.number_of_threads,
            "settings without named parameters differ from the defaults");
   const BS::Fitting_settings s = BS::settings_from_named_parameters(
@@ -778,7 +875,7 @@ void test_settings_from_named_parameters()
     BSP::subset_size(std::size_t(123), BSP::rigid_first(true, BSP::rigid_iterations(std::size_t(4),
     BSP::robust_weighting(BS::Robust_weighting::Cauchy, BSP::maximum_size_factor(2.5,
     BSP::placement_stiffness(0.5, BSP::rest_tolerance(1e-3, BSP::settling_tolerance(0.25,
-    BSP::number_of_threads(std::size_t(3))))))))))))))))
+    BSP::area_weight(0.25, BSP::number_of_threads(std::size_t(3)))))))))))))))))
       .number_of_iterations(std::size_t(77))
       .random_seed(5u)
       .maximum_running_time(3.));
@@ -787,7 +884,8 @@ void test_settings_from_named_parameters()
              s.projection_iterations == 9 && s.subset_size == 123 && s.random_seed == 5 && s.rigid_first &&
              s.rigid_iterations == 4 && s.robust_weighting == BS::Robust_weighting::Cauchy &&
              s.maximum_size_factor == 2.5 && s.placement_stiffness == 0.5 && s.maximum_running_time == 3. &&
-             s.rest_tolerance == 1e-3 && s.settling_tolerance == 0.25 && s.number_of_threads == 3,
+             s.rest_tolerance == 1e-3 && s.settling_tolerance == 0.25 && s.area_weight == 0.25 &&
+             s.number_of_threads == 3,
            "a named parameter did not reach its setting");
 }
 
@@ -812,6 +910,8 @@ void run(const char* kernel, bool full)
   test_misfit_rest_state<K>(rng);
   test_settling<K>();
   test_similar_basin_search<K>();
+  test_surface_area<K>(rng);
+  test_area_term<K>(rng);
   std::cout << "fitting with " << kernel << (blended_shape_test::failures() == before ? ": SUCCESS" : ": FAILED")
             << std::endl;
 }

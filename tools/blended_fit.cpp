@@ -50,6 +50,9 @@ const char* usage =
   "                       data between concave creases, blended in gradually) or both\n"
   "  --evolution-points N decide the splits on at most N of the points (default 4000; 0:\n"
   "                       all), then fit the final model to all of them\n"
+  "  --area-weight W      weight of the model's surface area in every fit (default 0: none;\n"
+  "                       0.3 keeps the surface from growing where no point is, see the\n"
+  "                       manual, Compact Models)\n"
   "  --trace DIR          write, as the fit goes, the model after each split tried (kept or\n"
   "                       undone) and each part removed, then the first fit and the final\n"
   "                       model, to DIR (created if missing): NN_KIND.ply (pieces coloured by\n"
@@ -241,7 +244,7 @@ int main(int argc, char** argv)
 {
   const auto options = tools::known_options({"--json", "--mesh", "--hierarchy", "--model", "--max-iterations", "--seed",
                                               "--threads", "--strays", "--max-parts", "--trace",
-                                              "--evolution-points", "--splits"},
+                                              "--evolution-points", "--splits", "--area-weight"},
                                              {"--no-split", "--no-holes", "--quiet", "--robust", "--no-robust", "--explicit"});
   return tools::run_tool("blended_fit", usage, argc, argv, options, [](const tools::Command_line& line) {
     std::string input, json, mesh, hierarchy, model_file, strays, trace;
@@ -249,6 +252,7 @@ int main(int argc, char** argv)
     std::size_t iterations = 100, threads = 0, max_parts = BS::Evolution_settings().maximum_number_of_parts;
     std::size_t evolution_points = BS::Evolution_settings().maximum_evolution_points;
     unsigned int seed = 0;
+    double area_weight = BS::Fitting_settings().area_weight;
     BS::Split_source split_source = BS::Evolution_settings().split_source;
     for(const tools::Option& o : line.options)
     {
@@ -277,6 +281,12 @@ int main(int argc, char** argv)
         if(!source)
           throw tools::Usage_error("--splits must be forces, creases or both, not '" + o.value + "'");
         split_source = *source;
+      }
+      else if(a == "--area-weight")
+      {
+        area_weight = tools::parse_number(a, o.value);
+        if(!(area_weight >= 0.) || !std::isfinite(area_weight))
+          throw tools::Usage_error("--area-weight must be a finite number >= 0");
       }
       else if(a == "--evolution-points")
       {
@@ -337,11 +347,12 @@ int main(int argc, char** argv)
     const Result result = BS::fit_blended_shape(
       points,
       BS::parameters::split_source(split_source,
+      BS::parameters::area_weight(area_weight,
       BS::parameters::maximum_evolution_points(evolution_points,
         BS::parameters::maximum_number_of_parts(max_parts,
         BS::parameters::number_of_threads(threads,
         BS::parameters::robust_weighting(robust ? BS::Robust_weighting::Mixture : BS::Robust_weighting::None,
-        BS::parameters::integrator(explicit_integrator ? BS::Integrator::Explicit : BS::Integrator::Gauss_newton))))))
+        BS::parameters::integrator(explicit_integrator ? BS::Integrator::Explicit : BS::Integrator::Gauss_newton)))))))
         .number_of_iterations(iterations)
         .random_seed(seed)
         .visitor(reporter));

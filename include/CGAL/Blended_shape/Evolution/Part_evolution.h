@@ -668,9 +668,11 @@ private:
     if(m_fitter->model().shape().number_of_components() == 1)
     {
       const auto fitted = fit_superquadric(
-        others, parameters::settling_tolerance(
-                  settling_tolerance, parameters::robust_weighting(Robust_weighting::None,
-                                                                   parameters::number_of_threads(threads).callback(callback))));
+        others, parameters::area_weight(
+                  m_fitter->settings().area_weight,
+                  parameters::settling_tolerance(
+                    settling_tolerance, parameters::robust_weighting(
+                                          Robust_weighting::None, parameters::number_of_threads(threads).callback(callback)))));
       m_last_fit = Fitting_status();
       m_last_fit.iterations = fitted.metrics.iterations;
       m_last_fit.converged = fitted.metrics.converged;
@@ -704,7 +706,8 @@ private:
                                   std::to_string(proposal.segment));
     where->segment = proposal.segment;
     const auto part = fit_superquadric(
-      members, parameters::settling_tolerance(settling_tolerance, parameters::number_of_threads(threads)));
+      members, parameters::area_weight(m_fitter->settings().area_weight,
+                                       parameters::settling_tolerance(settling_tolerance, parameters::number_of_threads(threads))));
     const auto lengthened = lengthened_into_base(*base, where->component, part.model, members);
     if(const std::optional<Split_proposal> footprint = region_inside_part(*base, *where, lengthened))
       if(const std::optional<Split_proposal> fitted = shrink_to_fit(base->shape(), *footprint))

@@ -10,8 +10,10 @@
 #include <CGAL/Blended_shape/Fitting/internal/Box_constrained_step.h>
 #include <CGAL/Blended_shape/Fitting/internal/chart_mesh_deviation_bound.h>
 #include <CGAL/Blended_shape/Fitting/internal/Point_blocks.h>
+#include <CGAL/Blended_shape/Fitting/internal/Surface_area.h>
 #include <CGAL/Blended_shape/IO/check_points.h>
 #include <CGAL/Blended_shape/internal/Parameter_table.h>
+#include <CGAL/Blended_shape/internal/point_spacing.h>
 
 #include <CGAL/Bbox_3.h>
 #include <CGAL/property_map.h>
@@ -39,11 +41,14 @@ struct Step_report
 {
   std::size_t points_used = 0; ///< the points whose forces the step used (the subset or all)
   /// The true energy `(1/2) sum_i rho(|p_i - x(u_i)|)` at the closest points
-  /// `u_i` of the model before the step (`rho` of Robust_loss: `d^2` without robust weighting).
+  /// `u_i` of the model before the step (`rho` of Robust_loss: `d^2` without
+  /// robust weighting), plus the energies of the placement springs and of the
+  /// area term (Fitting_settings::placement_stiffness, area_weight).
   double energy_before = 0.;
   double energy_after = 0.;   ///< the same, with the closest points of the new model
   /// The energy of the linearized dynamics at the fixed correspondences (u_i, n_i, w_i)
-  /// of the step, `(1/2) sum_i w_i (n_i . (p_i - x(u_i)))^2`, before the step.
+  /// of the step, `(1/2) sum_i w_i (n_i . (p_i - x(u_i)))^2`, before the step
+  /// (plus the springs' and the area term's, as for `energy_before`).
   double fixed_energy_before = 0.;
   double fixed_energy_after = 0.; ///< the same energy after the step
   /// `max_k |f_q[k]| / sqrt(2 E (J^T J)[k][k])`: the largest cosine between the residual
@@ -158,6 +163,7 @@ public:
     check_settings(settings);
     read_points(points, point_map);
     choose_subset();
+    set_area_weight();
     restructure(initial_model); // what depends on the model: the same as for a later structure change
   }
 
@@ -229,6 +235,7 @@ public:
     m_spring.clear();
     m_lambda = initial_damping;
     m_dt_scale = 1.;
+    m_area = m_data_area > 0. ? internal::Surface_area<Model>(m_model, area_resolution) : internal::Surface_area<Model>();
   }
 
   /*!
@@ -357,8 +364,9 @@ public:
     const Eigen::VectorXd q = m_model.parameters();
 
     Normal_equations system = assemble_normal_equations(active, corr);
+    const double area_energy_before = add_area_term(system);
     const double spring_energy_before = add_placement_springs(system, q, active.size());
-    report.energy_before = true_energy(corr.distance, corr.loss) + spring_energy_before;
+    report.energy_before = true_energy(corr.distance, corr.loss) + spring_energy_before + area_energy_before;
     const std::vector<bool> free_parameter = freeze_parameters_at_bounds(system, q);
     report.fixed_energy_before = report.fixed_energy_after = system.energy;
     report.energy_after = report.energy_before;
@@ -513,6 +521,9 @@ public:
   /// at all (measured: the split models of a human body's front view).
   static constexpr double maximum_step = 0.25;
 
+  /// The resolution of the tessellations the area term measures the surface on.
+  static constexpr int area_resolution = 6;
+
 private:
   // The model's bounds, with shape lengths also bounded by the data's size:
   // sizes (lengths bounded below by 0 or more) from minimum_size_ratio times
@@ -565,6 +576,8 @@ private:
     require(s.maximum_size_factor > 0., "maximum_size_factor must be > 0");
     require(s.placement_stiffness >= 0. && std::isfinite(s.placement_stiffness),
             "placement_stiffness must be a finite number >= 0");
+    require(s.area_weight >= 0. && std::isfinite(s.area_weight),
+            "area_weight must be a finite number >= 0 (0, the default: no area term; 0.3 keeps single views compact)");
     require(s.maximum_running_time > 0., "maximum_running_time must be > 0 seconds");
   }
 
@@ -721,6 +734,48 @@ private:
     return e;
   }
 
+  // The area term (Fitting_settings::area_weight): the fit minimizes
+  // (N/2) ln E + w N ln(A + A_0), whose gradient is, times 2 E / N, that of
+  // E + lambda A with lambda = 2 w E / (A + A_0): each step adds lambda A to
+  // the energy with lambda set from the step's E and A (at rest, the
+  // gradient of the logarithmic objective vanishes). A_0 = N s^2, the area
+  // the points cover (s: their median spacing), set once for the points;
+  // where they coincide, the square of their diameter.
+  void set_area_weight()
+  {
+    m_data_area = 0.;
+    if(m_settings.area_weight > 0.)
+    {
+      const double s = internal::median_spacing(m_points);
+      m_data_area = double(m_points.size()) * s * s;
+      if(!(m_data_area > 0.))
+        m_data_area = CGAL::square(m_diameter);
+    }
+  }
+
+  // Adds the area term at the current model to the system: sets this
+  // step's lambda from the system's (data) energy, adds lambda times the
+  // area's gradient and, as its Gauss-Newton matrix, that of the face areas
+  // taken as squares (internal::Surface_area); returns its energy lambda A.
+  // Called before the springs are added.
+  double add_area_term(Normal_equations& system)
+  {
+    if(m_area.empty())
+      return 0.;
+    Eigen::VectorXd gradient;
+    Eigen::MatrixXd H = Eigen::MatrixXd::Zero(system.H.rows(), system.H.cols());
+    const double a = m_area.area_and_gradient(m_model, gradient, H);
+    m_area_lambda = m_settings.area_weight * 2. * system.energy / (a + m_data_area);
+    const double e = m_area_lambda * a;
+    system.H += m_area_lambda * H;
+    system.g -= m_area_lambda * gradient;
+    system.energy += e;
+    return e;
+  }
+
+  // The area term's energy of `model`.
+  double area_energy(const Model& model) const { return m_area.empty() ? 0. : m_area_lambda * m_area.area(model); }
+
   // Parameters held at a bound by a force pushing past it are frozen for
   // this step (an active set): a step computed without the bound and then
   // clamped points the wrong way and only makes the damping grow. So are
@@ -803,7 +858,8 @@ private:
       trials.refused = true; // e.g. a blending region leaving its chart
       return false;
     }
-    const double spring1 = spring_energy(q1, active.size());
+    // (the energies of the terms that depend on the parameters only: the springs, the area)
+    const double spring1 = spring_energy(q1, active.size()) + area_energy(trial);
     double E1 = spring1;
     // the points (the same as point()) with their chart Jacobians: the
     // closest-point sweep starts from these chart points
@@ -1276,6 +1332,9 @@ private:
   bool m_correspondences_all = false;
   Eigen::VectorXd m_rest;             // the parameters the placement springs pull towards
   std::vector<double> m_spring;       // per parameter: spring stiffness per point (set at the first step)
+  double m_data_area = 0.;            // the area the points cover (see set_area_weight()); 0: no area term
+  double m_area_lambda = 0.;          // the area term's lambda in the current step
+  internal::Surface_area<Model> m_area; // its tessellations of the charts (empty: no area term)
   static constexpr double initial_damping = 1e-3;
   double m_lambda = initial_damping; // Gauss-Newton damping
   double m_dt_scale = 1.;    // explicit integrator: reduction of the stable step

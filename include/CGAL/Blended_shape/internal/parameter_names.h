@@ -22,6 +22,7 @@ CGAL_BLENDED_SHAPE_FITTING_SETTING(rigid_iterations)
 CGAL_BLENDED_SHAPE_FITTING_SETTING(robust_weighting)
 CGAL_BLENDED_SHAPE_FITTING_SETTING(maximum_size_factor)
 CGAL_BLENDED_SHAPE_FITTING_SETTING(placement_stiffness)
+CGAL_BLENDED_SHAPE_FITTING_SETTING(area_weight)
 CGAL_BLENDED_SHAPE_FITTING_SETTING(number_of_threads)
 // Evolution_settings, under the names of its members
 CGAL_BLENDED_SHAPE_EVOLUTION_SETTING(maximum_number_of_parts)
