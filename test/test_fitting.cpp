@@ -609,6 +609,22 @@ void test_surface_area(std::mt19937_64& rng)
     const auto blended = BS::make_blended_model(m);
     const double b = BS::internal::Surface_area<BS::Deformable_blended_model<K>>(blended, 6).area(blended);
     BS_CHECK(std::abs(b - a) <= 1e-9 * a, "the blended model of a superquadric has another area: " << b << " vs " << a);
+    // split (h = 0: the same surface, the region's inside now the copy's):
+    // the same area but for the tessellations' differences, not the strip twice
+    BS::Blended_shape<K> split_shape = blended.shape();
+    split_shape.split(0, 1, BS::Ellipse_blending_region::make_parameters(0., 0.05, 0.35, 0.33, 0., 0.9, 0.), 0.07);
+    const BS::Deformable_blended_model<K> split(split_shape, blended.translation(), blended.quaternion());
+    const double c = BS::internal::Surface_area<BS::Deformable_blended_model<K>>(split, 24).area(split);
+    const double d = BS::internal::Surface_area<BS::Deformable_blended_model<K>>(blended, 24).area(blended);
+    BS_CHECK(std::abs(c - d) <= 0.01 * d, "the split model's area " << c << " is not the unsplit one's " << d);
+    // the copy grown (its semi-axes times 1.3, h = 0: it shows inside the region): more area
+    BS::Blended_shape<K> grown_shape = split_shape;
+    Eigen::VectorXd gq = grown_shape.parameters();
+    gq.segment<3>(Eigen::Index(grown_shape.component_offset(1) + BS::Blended_shape<K>::number_of_placement_parameters)) *= 1.3;
+    grown_shape.set_parameters(gq);
+    const BS::Deformable_blended_model<K> grown(grown_shape, blended.translation(), blended.quaternion());
+    const double g = BS::internal::Surface_area<BS::Deformable_blended_model<K>>(grown, 24).area(grown);
+    BS_CHECK(g > 1.01 * c, "the split model's grown part adds no area: " << g << " vs " << c);
     const Eigen::VectorXd p = m.parameters();
     for(Eigen::Index i = 0; i < p.size(); ++i)
     {
