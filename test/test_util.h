@@ -26,4 +26,18 @@ inline int exit_code() { return failures() == 0 ? EXIT_SUCCESS : EXIT_FAILURE; }
     }                                                                                \
   } while(false)
 
+// Checks that `call()` throws an exception of type `Exception` whose message
+// contains `expected` (BS_CHECK_REFUSED names the place of the check).
+#define BS_CHECK_REFUSED(Exception, call, expected)                                  \
+  do {                                                                               \
+    const std::string bs_expected_ = (expected);                                     \
+    try {                                                                            \
+      call;                                                                          \
+      BS_CHECK(false, "accepted: expected an error saying \"" << bs_expected_ << "\""); \
+    } catch(const Exception& bs_error_) {                                            \
+      BS_CHECK(std::string(bs_error_.what()).find(bs_expected_) != std::string::npos, \
+               "message \"" << bs_error_.what() << "\" does not say \"" << bs_expected_ << "\""); \
+    }                                                                                \
+  } while(false)
+
 #endif

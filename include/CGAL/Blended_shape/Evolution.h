@@ -5,6 +5,7 @@
 #ifndef CGAL_BLENDED_SHAPE_EVOLUTION_H
 #define CGAL_BLENDED_SHAPE_EVOLUTION_H
 
+#include <CGAL/Blended_shape/Evolution/Branch_segments.h>
 #include <CGAL/Blended_shape/Evolution/Crease_segments.h>
 #include <CGAL/Blended_shape/Evolution/Evolution_settings.h>
 #include <CGAL/Blended_shape/Evolution/Force_regions.h>

@@ -34,6 +34,10 @@ struct Crease_segments
   std::vector<std::size_t> label;
   /// The number of points of each segment, decreasing.
   std::vector<std::size_t> size;
+  /// branch_segments(): the segment each segment branches from
+  /// (`std::size_t(-1)` for the first segment of each connected piece of
+  /// the points); crease_segments(): empty.
+  std::vector<std::size_t> parent;
 };
 
 /// \ingroup PkgBlendedShapeEvolution
@@ -52,6 +56,91 @@ struct Crease_segment_settings
 };
 
 namespace internal {
+
+// Union-find over the indices 0, ..., n - 1, the smallest index of each
+// set its root (the same roots in any order of the joins).
+struct Index_union_find
+{
+  std::vector<std::size_t> parent;
+
+  explicit Index_union_find(std::size_t n) : parent(n) { std::iota(parent.begin(), parent.end(), std::size_t(0)); }
+  std::size_t find(std::size_t x)
+  {
+    while(parent[x] != x)
+      x = parent[x] = parent[parent[x]];
+    return x;
+  }
+  void join(std::size_t a, std::size_t b)
+  {
+    a = find(a);
+    b = find(b);
+    if(a != b)
+      parent[(std::max)(a, b)] = (std::min)(a, b);
+  }
+};
+
+// The `k` nearest neighbours of each of `points` (a CGAL k-d tree), nearest
+// first: `hit[i]` the point itself and its `k` neighbours, in the order of
+// the search, `distance[i]` their distances; the same lists at every run
+// (ties as CGAL's search breaks them).
+struct Neighbourhoods
+{
+  std::vector<std::vector<std::size_t>> hit;
+  std::vector<std::vector<double>> distance;
+
+  // The neighbours of point `i`, without itself.
+  std::vector<std::size_t> neighbours(std::size_t i) const
+  {
+    std::vector<std::size_t> result;
+    for(std::size_t j : hit[i])
+      if(j != i)
+        result.push_back(j);
+    return result;
+  }
+  // The distance of point `i` to its farthest (`k`-th) neighbour.
+  double radius(std::size_t i) const
+  {
+    double r = 0.;
+    for(double d : distance[i])
+      r = (std::max)(r, d);
+    return r;
+  }
+};
+
+inline Neighbourhoods k_nearest_neighbourhoods(const std::vector<Eigen::Vector3d>& points, std::size_t k)
+{
+  typedef CGAL::Simple_cartesian<double> K;
+  typedef K::Point_3 Point;
+  typedef CGAL::Search_traits_3<K> Base_traits;
+  typedef CGAL::Pointer_property_map<Point>::const_type Point_map;
+  typedef CGAL::Search_traits_adapter<std::size_t, Point_map, Base_traits> Traits;
+  typedef CGAL::Orthogonal_k_neighbor_search<Traits> Search;
+  const std::size_t n = points.size();
+  Neighbourhoods result;
+  result.hit.resize(n);
+  result.distance.resize(n);
+  if(n == 0)
+    return result;
+  std::vector<Point> copy;
+  copy.reserve(n);
+  for(const Eigen::Vector3d& p : points)
+    copy.emplace_back(p.x(), p.y(), p.z());
+  std::vector<std::size_t> indices(n);
+  std::iota(indices.begin(), indices.end(), std::size_t(0));
+  const Point_map point_map = CGAL::make_property_map(static_cast<const std::vector<Point>&>(copy));
+  const typename Search::Tree tree(indices.begin(), indices.end(), typename Search::Splitter(), Traits(point_map));
+  const typename Search::Distance metric(point_map);
+  for(std::size_t i = 0; i < n; ++i)
+  {
+    const Search search(tree, copy[i], unsigned(k + 1), 0., true, metric);
+    for(const auto& h : search)
+    {
+      result.hit[i].push_back(h.first);
+      result.distance[i].push_back(std::sqrt(h.second));
+    }
+  }
+  return result;
+}
 
 // Crease_segment_settings::propagate_orientation: the normals oriented over
 // the edges (neighbours[i] with is_edge(i, j)), within each piece reached
@@ -167,43 +256,22 @@ inline Crease_segments crease_segments(const std::vector<Eigen::Vector3d>& point
     return result;
   const std::size_t k = (std::min)(settings.neighbours, n - 1);
 
-  typedef CGAL::Simple_cartesian<double> K;
-  typedef K::Point_3 Point;
-  typedef CGAL::Search_traits_3<K> Base_traits;
-  typedef CGAL::Pointer_property_map<Point>::const_type Point_map;
-  typedef CGAL::Search_traits_adapter<std::size_t, Point_map, Base_traits> Traits;
-  typedef CGAL::Orthogonal_k_neighbor_search<Traits> Search;
-  std::vector<Point> copy;
-  copy.reserve(n);
-  for(const Eigen::Vector3d& p : points)
-    copy.emplace_back(p.x(), p.y(), p.z());
-  std::vector<std::size_t> indices(n);
-  std::iota(indices.begin(), indices.end(), std::size_t(0));
-  const Point_map point_map = CGAL::make_property_map(static_cast<const std::vector<Point>&>(copy));
-  const typename Search::Tree tree(indices.begin(), indices.end(), typename Search::Splitter(), Traits(point_map));
-  const typename Search::Distance distance(point_map);
-
   // 1. neighbours (nearest first, without the point itself) and normals
+  const internal::Neighbourhoods near = internal::k_nearest_neighbourhoods(points, k);
   std::vector<std::vector<std::size_t>> neighbours(n);
   std::vector<Eigen::Vector3d> normal(n);
   std::vector<double> spacing(n, 0.);
   for(std::size_t i = 0; i < n; ++i)
   {
-    const Search search(tree, copy[i], unsigned(k + 1), 0., true, distance);
+    neighbours[i] = near.neighbours(i);
+    spacing[i] = near.radius(i);
     Eigen::Vector3d mean = Eigen::Vector3d::Zero();
-    std::size_t count = 0;
-    for(const auto& hit : search)
-    {
-      mean += points[hit.first];
-      ++count;
-      spacing[i] = (std::max)(spacing[i], std::sqrt(hit.second));
-      if(hit.first != i)
-        neighbours[i].push_back(hit.first);
-    }
-    mean /= double(count);
+    for(std::size_t j : near.hit[i])
+      mean += points[j];
+    mean /= double(near.hit[i].size());
     Eigen::Matrix3d covariance = Eigen::Matrix3d::Zero();
-    for(const auto& hit : search)
-      covariance += (points[hit.first] - mean) * (points[hit.first] - mean).transpose();
+    for(std::size_t j : near.hit[i])
+      covariance += (points[j] - mean) * (points[j] - mean).transpose();
     const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eigen(covariance); // eigenvalues increasing
     normal[i] = eigen.eigenvectors().col(0);
     if(normal[i].dot(outward[i]) < 0.)
@@ -226,24 +294,12 @@ inline Crease_segments crease_segments(const std::vector<Eigen::Vector3d>& point
         crease[i] = crease[j] = true;
 
   // 4. components of the other points (union-find, the smallest index as root)
-  std::vector<std::size_t> parent(n);
-  std::iota(parent.begin(), parent.end(), std::size_t(0));
-  auto find = [&](std::size_t x) {
-    while(parent[x] != x)
-      x = parent[x] = parent[parent[x]];
-    return x;
-  };
-  auto join = [&](std::size_t a, std::size_t b) {
-    a = find(a);
-    b = find(b);
-    if(a != b)
-      parent[(std::max)(a, b)] = (std::min)(a, b);
-  };
+  internal::Index_union_find sets(n);
   for(std::size_t i = 0; i < n; ++i)
     if(!crease[i])
       for(std::size_t j : neighbours[i])
         if(!crease[j] && is_edge(i, j))
-          join(i, j);
+          sets.join(i, j);
   // crease points join their neighbours' segments ring after ring
   for(bool changed = true; changed;)
   {
@@ -254,7 +310,7 @@ inline Crease_segments crease_segments(const std::vector<Eigen::Vector3d>& point
         for(std::size_t j : neighbours[i])
           if(!crease[j] && is_edge(i, j))
           {
-            join(j, i);
+            sets.join(j, i);
             joined.push_back(i);
             break;
           }
@@ -266,12 +322,12 @@ inline Crease_segments crease_segments(const std::vector<Eigen::Vector3d>& point
     if(crease[i])
       for(std::size_t j : neighbours[i])
         if(crease[j] && is_edge(i, j))
-          join(i, j);
+          sets.join(i, j);
 
   // numbered by decreasing size, ties by smallest index (the root)
   std::vector<std::size_t> count(n, 0);
   for(std::size_t i = 0; i < n; ++i)
-    ++count[find(i)];
+    ++count[sets.find(i)];
   std::vector<std::size_t> roots;
   for(std::size_t i = 0; i < n; ++i)
     if(count[i] > 0)
@@ -284,7 +340,7 @@ inline Crease_segments crease_segments(const std::vector<Eigen::Vector3d>& point
     result.size.push_back(count[roots[s]]);
   }
   for(std::size_t i = 0; i < n; ++i)
-    result.label[i] = number[find(i)];
+    result.label[i] = number[sets.find(i)];
   return result;
 }
 
