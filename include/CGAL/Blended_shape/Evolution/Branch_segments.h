@@ -128,9 +128,7 @@ inline Crease_segments branch_segments(const std::vector<Eigen::Vector3d>& point
     throw std::invalid_argument(
       "branch_segments: neighbours, edge_factor, band_width and minimum_branch_share must be positive");
   const std::size_t n = points.size();
-  for(std::size_t i = 0; i < n; ++i)
-    if(!points[i].allFinite())
-      throw std::invalid_argument("branch_segments: point " + std::to_string(i) + " is not finite");
+  internal::check_finite_points(points, "branch_segments");
   Crease_segments result;
   result.label.assign(n, 0);
   if(n == 0)

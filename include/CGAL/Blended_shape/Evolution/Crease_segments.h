@@ -57,6 +57,16 @@ struct Crease_segment_settings
 
 namespace internal {
 
+// Throws std::invalid_argument, the message starting with `who`, naming the
+// first point of `points` that is not finite.
+inline void check_finite_points(const std::vector<Eigen::Vector3d>& points, const std::string& who)
+{
+  for(std::size_t i = 0; i < points.size(); ++i)
+    if(!points[i].allFinite())
+      throw std::invalid_argument(who + ": point " + std::to_string(i) +
+                                  " is not finite; remove it or give finite coordinates");
+}
+
 // Union-find over the indices 0, ..., n - 1, the smallest index of each
 // set its root (the same roots in any order of the joins).
 struct Index_union_find
@@ -242,14 +252,11 @@ inline Crease_segments crease_segments(const std::vector<Eigen::Vector3d>& point
   if(settings.neighbours < 1 || !(settings.crease_angle > 0.) || !(settings.edge_factor > 0.))
     throw std::invalid_argument("crease_segments: neighbours, crease_angle and edge_factor must be positive");
   const std::size_t n = points.size();
+  internal::check_finite_points(points, "crease_segments");
   for(std::size_t i = 0; i < n; ++i)
-  {
-    if(!points[i].allFinite())
-      throw std::invalid_argument("crease_segments: point " + std::to_string(i) + " is not finite");
     if(!outward[i].allFinite() || outward[i].squaredNorm() == 0.)
       throw std::invalid_argument("crease_segments: outward direction " + std::to_string(i) +
                                   " is zero or not finite; give a direction on the outer side of the surface");
-  }
   Crease_segments result;
   result.label.assign(n, 0);
   if(n == 0)
