@@ -8,7 +8,8 @@
 // ours. Prints Markdown; --csv FILE also writes CSV.
 //
 //   reproduce_paper [--evolve] [--splits forces|creases|both] [--evolution-points N] [--robust] [--threads N]
-//                   [--seed N] [--area-weight W] [--csv FILE] [--markdown FILE]
+//                   [--seed N] [--area-weight W] [--blend-stages N] [--stage-iterations N]
+//                   [--csv FILE] [--markdown FILE]
 //
 // The fits use the paper's least squares (Robust_weighting::None): its data
 // have no strays, and the robust default may take a part of a multi-part
@@ -24,7 +25,9 @@
 // --evolution-points N: Evolution_settings::maximum_evolution_points (default
 // 4000; 0: evolution on all points). --splits: Evolution_settings::split_source
 // (default forces). --area-weight W: Fitting_settings::area_weight (default
-// 0: the paper's fit, no area term).
+// 0: the paper's fit, no area term). --blend-stages N, --stage-iterations N:
+// Evolution_settings::blend_stages (default 4) and
+// intermediate_stage_iterations (default 30).
 //
 // "iteration / sweep" is the mean time of one iteration of the fit (all its
 // phases: the candidate fits on point subsets and the fit on all points) over
@@ -168,6 +171,8 @@ int main(int argc, char** argv)
   double area_weight = BS::Fitting_settings().area_weight;
   bool robust = false, evolve = false;
   std::size_t evolution_points = BS::Evolution_settings().maximum_evolution_points;
+  std::size_t blend_stages = BS::Evolution_settings().blend_stages;
+  std::size_t stage_iterations = BS::Evolution_settings().intermediate_stage_iterations;
   BS::Split_source split_source = BS::Evolution_settings().split_source;
   for(int i = 1; i < argc; ++i)
   {
@@ -186,6 +191,12 @@ int main(int argc, char** argv)
     else if(std::strcmp(argv[i], "--evolution-points") == 0 && i + 1 < argc &&
             BB::parse_count(argv[i + 1], evolution_points))
       ++i;
+    else if(std::strcmp(argv[i], "--blend-stages") == 0 && i + 1 < argc && BB::parse_count(argv[i + 1], blend_stages) &&
+            blend_stages >= 1)
+      ++i;
+    else if(std::strcmp(argv[i], "--stage-iterations") == 0 && i + 1 < argc &&
+            BB::parse_count(argv[i + 1], stage_iterations) && stage_iterations >= 1)
+      ++i;
     else if(std::strcmp(argv[i], "--splits") == 0 && i + 1 < argc && (source = BS::split_source_from_name(argv[i + 1])))
     {
       split_source = *source;
@@ -194,7 +205,8 @@ int main(int argc, char** argv)
     else
     {
       std::cerr << "usage: reproduce_paper [--evolve] [--splits forces|creases|both] [--evolution-points N] [--robust] "
-                   "[--threads N] [--seed N] [--area-weight W] [--csv FILE] [--markdown FILE]\n";
+                   "[--threads N] [--seed N] [--area-weight W] [--blend-stages N] [--stage-iterations N] [--csv FILE] "
+                   "[--markdown FILE]\n";
       return 2;
     }
   }
@@ -233,7 +245,8 @@ int main(int argc, char** argv)
      << (robust ? "robust (Mixture, the default)" : "the paper's least squares") << "; area weight: " << area_weight
      << "; "
      << (evolve ? std::string("fit_blended_shape() (part evolution, splits from ") +
-                    BS::split_source_name(split_source) + ")"
+                    BS::split_source_name(split_source) + "; blend stages " + std::to_string(blend_stages) +
+                    ", at most " + std::to_string(stage_iterations) + " iterations each but the last)"
                 : std::string("fit_superquadric() (one superquadric)")) << "\n\n"
      << "| data | points | param (paper / ours) | iter (paper / ours: all, on all points) | RMS_1,2,3 % paper | RMS_1,2,3 % ours "
         "| parts (paper / ours) | holes | genus | seconds (ours) | iteration / sweep | Chamfer / diagonal (ours) |\n"
@@ -255,7 +268,11 @@ int main(int argc, char** argv)
     if(evolve)
     {
       const auto r = BS::fit_blended_shape(
-        e.points, BS::parameters::split_source(split_source, BS::parameters::maximum_evolution_points(evolution_points, np)));
+        e.points, BS::parameters::split_source(
+                    split_source, BS::parameters::blend_stages(
+                                    blend_stages, BS::parameters::intermediate_stage_iterations(
+                                                    stage_iterations,
+                                                    BS::parameters::maximum_evolution_points(evolution_points, np)))));
       f.metrics = r.metrics;
       f.parts = r.number_of_parts();
       f.holes = r.model.shape().holes().size();

@@ -320,17 +320,7 @@ void test_bad_input()
   const BS::Quotient_domain<K> domain(sphere, pieces, 1);
   const std::vector<BS::Normal_force> good = sphere_forces<K>(sphere, 200, 0.01);
   auto refused = [&](const std::vector<BS::Normal_force>& forces, double factor, const std::string& expected) {
-    try
-    {
-      BS::Force_regions<K> r(domain, forces, factor);
-    }
-    catch(const std::invalid_argument& e)
-    {
-      BS_CHECK(std::string(e.what()).find(expected) != std::string::npos,
-               "message \"" << e.what() << "\" does not say \"" << expected << "\"");
-      return;
-    }
-    BS_CHECK(false, "accepted: expected an error saying \"" << expected << "\"");
+    BS_CHECK_REFUSED(std::invalid_argument, BS::Force_regions<K> r(domain, forces, factor), expected);
   };
   // a split along a boundary that does not exist, and a split the shape refuses
   const BS::Force_regions<K> regions(domain, good);
@@ -347,16 +337,8 @@ void test_bad_input()
   BS::Split_proposal outside;
   outside.region = BS::Ellipse_blending_region::make_parameters(5., 0., 0.3, 0.3, 0.);
   outside.half_width = 0.05;
-  bool refused_split = false;
-  try
-  {
-    BS::apply_split(BS::Deformable_blended_model<K>(sphere), outside);
-  }
-  catch(const std::invalid_argument& e)
-  {
-    refused_split = std::string(e.what()).find("apply_split: the proposed split is refused") != std::string::npos;
-  }
-  BS_CHECK(refused_split, "apply_split() of a region outside its chart: no clear error");
+  BS_CHECK_REFUSED(std::invalid_argument, BS::apply_split(BS::Deformable_blended_model<K>(sphere), outside),
+                   "apply_split: the proposed split is refused");
 
   refused({}, 3., "no forces");
   refused(good, -1., "threshold_factor");
@@ -634,17 +616,7 @@ void test_evolution_limits()
   }
 
   auto refused = [&](BS::Evolution_settings settings, const std::string& expected) {
-    try
-    {
-      evolution_of<K>(points, settings);
-    }
-    catch(const std::invalid_argument& e)
-    {
-      BS_CHECK(std::string(e.what()).find(expected) != std::string::npos,
-               "message \"" << e.what() << "\" does not say \"" << expected << "\"");
-      return;
-    }
-    BS_CHECK(false, "accepted: expected an error saying \"" << expected << "\"");
+    BS_CHECK_REFUSED(std::invalid_argument, evolution_of<K>(points, settings), expected);
   };
   BS::Evolution_settings bad;
   bad.maximum_number_of_parts = 0;
@@ -661,6 +633,9 @@ void test_evolution_limits()
   bad = BS::Evolution_settings();
   bad.blend_stages = 0;
   refused(bad, "blend_stages");
+  bad = BS::Evolution_settings();
+  bad.intermediate_stage_iterations = 0;
+  refused(bad, "intermediate_stage_iterations");
   bad = BS::Evolution_settings();
   bad.split_source = static_cast<BS::Split_source>(7);
   refused(bad, "split_source");
@@ -721,16 +696,8 @@ void test_split_model_fits_to_rest()
               << unsplit << " before it), " << before << " from the tessellation" << std::endl;
     const std::vector<typename K::Point_3> fewer(points.begin(), points.begin() + 100);
     const BS::Deformable_model_fitter<Model> other(fewer, robust.model());
-    bool refused = false;
-    try
-    {
-      inheriting.start_from_foot_points_of(other);
-    }
-    catch(const std::invalid_argument& e)
-    {
-      refused = std::string(e.what()).find("start_from_foot_points_of: the fitters have other points") != std::string::npos;
-    }
-    BS_CHECK(refused, "the foot points of a fitter of other points were not refused");
+    BS_CHECK_REFUSED(std::invalid_argument, inheriting.start_from_foot_points_of(other),
+                     "start_from_foot_points_of: the fitters have other points");
   }
   // The points whose foot points the split moved to the new component (the
   // inside of its region) are found there again, at the same chart points
@@ -769,38 +736,14 @@ void test_split_model_fits_to_rest()
                << std::setprecision(17) << inherited << ", before the split " << unsplit);
     std::cout << "  foot points moved to the new part by the split: " << found << " of " << in_region
               << " found at the same chart points" << std::endl;
-    bool refused = false;
-    try
-    {
-      BS::charts_moved_by_split(split_model, robust.model(), proposal->component);
-    }
-    catch(const std::invalid_argument& e)
-    {
-      refused = std::string(e.what()).find("charts_moved_by_split: the second model is not the first") != std::string::npos;
-    }
-    BS_CHECK(refused, "charts_moved_by_split() of models in the wrong order was not refused");
-    refused = false;
-    try
-    {
-      inheriting.start_from_foot_points_of(robust, std::vector<std::size_t>(moved.size() + 1, std::size_t(-1)));
-    }
-    catch(const std::invalid_argument& e)
-    {
-      refused = std::string(e.what()).find("moved_to has") != std::string::npos;
-    }
-    BS_CHECK(refused, "a moved_to of the wrong size was not refused");
-    refused = false;
-    try
-    {
-      std::vector<std::size_t> beyond = moved;
-      beyond.front() = split_model.number_of_charts();
-      inheriting.start_from_foot_points_of(robust, beyond);
-    }
-    catch(const std::invalid_argument& e)
-    {
-      refused = std::string(e.what()).find("moved_to names chart") != std::string::npos;
-    }
-    BS_CHECK(refused, "a moved_to naming a chart the model does not have was not refused");
+    BS_CHECK_REFUSED(std::invalid_argument, BS::charts_moved_by_split(split_model, robust.model(), proposal->component),
+                     "charts_moved_by_split: the second model is not the first");
+    const std::vector<std::size_t> one_too_many(moved.size() + 1, std::size_t(-1));
+    BS_CHECK_REFUSED(std::invalid_argument, inheriting.start_from_foot_points_of(robust, one_too_many), "moved_to has");
+    std::vector<std::size_t> beyond = moved;
+    beyond.front() = split_model.number_of_charts();
+    BS_CHECK_REFUSED(std::invalid_argument, inheriting.start_from_foot_points_of(robust, beyond),
+                     "moved_to names chart");
   }
   BS::Fitting_status status;
   std::string error;
@@ -900,16 +843,8 @@ void test_fit_blended_shape()
            "fit_blended_shape stopped at once: aborted " << stopped.status.aborted << ", " << stopped.events.size()
                                                          << " events");
 
-  bool refused = false;
-  try
-  {
-    BS::fit_blended_shape(points, BSP::maximum_number_of_parts(std::size_t(0)));
-  }
-  catch(const std::invalid_argument& e)
-  {
-    refused = std::string(e.what()).find("fit_blended_shape: maximum_number_of_parts") != std::string::npos;
-  }
-  BS_CHECK(refused, "maximum_number_of_parts(0) not refused with a message naming it");
+  BS_CHECK_REFUSED(std::invalid_argument, BS::fit_blended_shape(points, BSP::maximum_number_of_parts(std::size_t(0))),
+                   "fit_blended_shape: maximum_number_of_parts");
 }
 
 // The structure of a blended model: per blend, its kind and which component
@@ -1028,16 +963,7 @@ void test_sampled_evolution()
   BS_CHECK(measured <= expected * (1. + 1e-9),
            "start_from_chart_points: mean squared distance " << measured << " instead of " << expected);
   starts.pop_back();
-  bool refused = false;
-  try
-  {
-    started.start_from_chart_points(starts);
-  }
-  catch(const std::invalid_argument& e)
-  {
-    refused = std::string(e.what()).find("one per point") != std::string::npos;
-  }
-  BS_CHECK(refused, "start_from_chart_points: one chart point too few not refused");
+  BS_CHECK_REFUSED(std::invalid_argument, started.start_from_chart_points(starts), "one per point");
   std::cout << "  evolution on 500 of " << points.size() << " points: " << c.number_of_parts() << " parts, RMS "
             << c.metrics.rms << " (on all points: " << a.metrics.rms << ")" << std::endl;
 }
@@ -1114,17 +1040,7 @@ void test_shrink_to_fit()
   BS_CHECK(!BS::shrink_to_fit(shape, cut), "a proposal inside an earlier split's region is accepted");
   // proposals that are not of this shape: a clear error, not "nothing"
   auto not_of_shape = [&](BS::Split_proposal bad, const std::string& expected) {
-    try
-    {
-      BS::shrink_to_fit(shape, bad);
-    }
-    catch(const std::invalid_argument& e)
-    {
-      BS_CHECK(std::string(e.what()).find(expected) != std::string::npos,
-               "message \"" << e.what() << "\" does not say \"" << expected << "\"");
-      return;
-    }
-    BS_CHECK(false, "shrink_to_fit() accepted a proposal with " << expected);
+    BS_CHECK_REFUSED(std::invalid_argument, BS::shrink_to_fit(shape, bad), expected);
   };
   BS::Split_proposal bad = apart;
   bad.component = 7;
@@ -1288,17 +1204,7 @@ void test_crease_segments()
   // bad input
   auto refused = [&](const std::vector<Eigen::Vector3d>& p, const std::vector<Eigen::Vector3d>& o,
                      const BS::Crease_segment_settings& settings, const std::string& expected) {
-    try
-    {
-      BS::crease_segments(p, o, settings);
-    }
-    catch(const std::invalid_argument& e)
-    {
-      BS_CHECK(std::string(e.what()).find(expected) != std::string::npos,
-               "message \"" << e.what() << "\" does not say \"" << expected << "\"");
-      return;
-    }
-    BS_CHECK(false, "accepted: expected an error saying \"" << expected << "\"");
+    BS_CHECK_REFUSED(std::invalid_argument, BS::crease_segments(p, o, settings), expected);
   };
   const BS::Crease_segment_settings defaults;
   refused(points, std::vector<Eigen::Vector3d>(3), defaults, "one per point");
@@ -1483,26 +1389,10 @@ void test_add_gradual_part()
   // a region out of its chart
   BS::Split_proposal outside = proposal;
   outside.region = Region::make_parameters(5., 0., 0.35, 0.33, 0., 1., 0.);
-  try
-  {
-    BS::add_gradual_part(body, outside, part);
-    BS_CHECK(false, "a region outside its chart was accepted");
-  }
-  catch(const std::invalid_argument& e)
-  {
-    BS_CHECK(std::string(e.what()).find("add_gradual_part") != std::string::npos, e.what());
-  }
+  BS_CHECK_REFUSED(std::invalid_argument, BS::add_gradual_part(body, outside, part), "add_gradual_part");
   BS::Split_proposal no_base = proposal;
   no_base.component = 5;
-  try
-  {
-    BS::add_gradual_part(body, no_base, part);
-    BS_CHECK(false, "a part on a component that does not exist was accepted");
-  }
-  catch(const std::invalid_argument& e)
-  {
-    BS_CHECK(std::string(e.what()).find("component 5 does not exist") != std::string::npos, e.what());
-  }
+  BS_CHECK_REFUSED(std::invalid_argument, BS::add_gradual_part(body, no_base, part), "component 5 does not exist");
 }
 
 // lengthened_into_base(): a part fitted to what sticks out (a cylinder on
@@ -1645,15 +1535,8 @@ void test_region_inside_part()
     BS::Split_proposal bad = proposal;
     bad.component = component;
     bad.chart = chart;
-    try
-    {
-      BS::region_inside_part(sphere, bad, cylinder);
-      BS_CHECK(false, "region_inside_part accepted component " << component << ", chart " << chart);
-    }
-    catch(const std::invalid_argument& e)
-    {
-      BS_CHECK(std::string(e.what()).find(component == 1 ? "component" : "chart 2") != std::string::npos, e.what());
-    }
+    BS_CHECK_REFUSED(std::invalid_argument, BS::region_inside_part(sphere, bad, cylinder),
+                     component == 1 ? "component" : "chart 2");
   }
 }
 
@@ -1763,6 +1646,30 @@ void run_force_regions(const char* kernel)
             << std::endl;
 }
 
+// evolution_settings_from_named_parameters(): no parameter gives the
+// defaults of Evolution_settings, and each named parameter reaches its member.
+void test_evolution_settings_from_named_parameters()
+{
+  namespace BSP = BS::parameters;
+  const BS::Evolution_settings d, none = BS::evolution_settings_from_named_parameters();
+  BS_CHECK(none.maximum_number_of_parts == d.maximum_number_of_parts && none.target_accuracy == d.target_accuracy &&
+             none.maximum_split_tries == d.maximum_split_tries && none.threshold_factor == d.threshold_factor &&
+             none.analysis_resolution == d.analysis_resolution &&
+             none.maximum_evolution_points == d.maximum_evolution_points && none.split_source == d.split_source &&
+             none.blend_stages == d.blend_stages &&
+             none.intermediate_stage_iterations == d.intermediate_stage_iterations,
+           "evolution settings without named parameters differ from the defaults");
+  const BS::Evolution_settings s = BS::evolution_settings_from_named_parameters(
+    BSP::maximum_number_of_parts(std::size_t(5), BSP::target_accuracy(0.01, BSP::maximum_split_tries(std::size_t(2),
+    BSP::threshold_factor(2.5, BSP::analysis_resolution(12, BSP::maximum_evolution_points(std::size_t(500),
+    BSP::split_source(BS::Split_source::Both, BSP::blend_stages(std::size_t(3),
+    BSP::intermediate_stage_iterations(std::size_t(7)))))))))));
+  BS_CHECK(s.maximum_number_of_parts == 5 && s.target_accuracy == 0.01 && s.maximum_split_tries == 2 &&
+             s.threshold_factor == 2.5 && s.analysis_resolution == 12 && s.maximum_evolution_points == 500 &&
+             s.split_source == BS::Split_source::Both && s.blend_stages == 3 && s.intermediate_stage_iterations == 7,
+           "a named parameter did not reach its member of Evolution_settings");
+}
+
 } // namespace
 
 int main(int argc, char** argv)
@@ -1779,6 +1686,7 @@ int main(int argc, char** argv)
   }
   if(part == "all" || part == "segments")
   {
+    test_evolution_settings_from_named_parameters();
     test_crease_segments(); // (no kernel: points as Eigen vectors)
     test_branch_segments<CGAL::Exact_predicates_inexact_constructions_kernel>(); // (the kernel samples the shapes only)
   }

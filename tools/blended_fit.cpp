@@ -50,6 +50,8 @@ const char* usage =
   "                       data between concave creases, blended in gradually) or both\n"
   "  --evolution-points N decide the splits on at most N of the points (default 4000; 0:\n"
   "                       all), then fit the final model to all of them\n"
+  "  --blend-stages N     a crease split's part comes in over N stages (default 4; 1: at once)\n"
+  "  --stage-iterations N iteration limit of each of those stages but the last (default 30)\n"
   "  --area-weight W      weight of the model's surface area in every fit (default 0: none;\n"
   "                       0.3 keeps the surface from growing where no point is, see the\n"
   "                       manual, Compact Models)\n"
@@ -244,13 +246,16 @@ int main(int argc, char** argv)
 {
   const auto options = tools::known_options({"--json", "--mesh", "--hierarchy", "--model", "--max-iterations", "--seed",
                                               "--threads", "--strays", "--max-parts", "--trace",
-                                              "--evolution-points", "--splits", "--area-weight"},
+                                              "--evolution-points", "--splits", "--area-weight", "--blend-stages",
+                                              "--stage-iterations"},
                                              {"--no-split", "--no-holes", "--quiet", "--robust", "--no-robust", "--explicit"});
   return tools::run_tool("blended_fit", usage, argc, argv, options, [](const tools::Command_line& line) {
     std::string input, json, mesh, hierarchy, model_file, strays, trace;
     bool no_split = false, quiet = false, robust = true, explicit_integrator = false, max_parts_given = false;
     std::size_t iterations = 100, threads = 0, max_parts = BS::Evolution_settings().maximum_number_of_parts;
     std::size_t evolution_points = BS::Evolution_settings().maximum_evolution_points;
+    std::size_t blend_stages = BS::Evolution_settings().blend_stages;
+    std::size_t stage_iterations = BS::Evolution_settings().intermediate_stage_iterations;
     unsigned int seed = 0;
     double area_weight = BS::Fitting_settings().area_weight;
     BS::Split_source split_source = BS::Evolution_settings().split_source;
@@ -287,6 +292,18 @@ int main(int argc, char** argv)
         area_weight = tools::parse_number(a, o.value);
         if(!(area_weight >= 0.) || !std::isfinite(area_weight))
           throw tools::Usage_error("--area-weight must be a finite number >= 0");
+      }
+      else if(a == "--blend-stages")
+      {
+        blend_stages = std::size_t(tools::parse_integer(a, o.value));
+        if(blend_stages == 0 || blend_stages > 100)
+          throw tools::Usage_error("--blend-stages must be in [1, 100]");
+      }
+      else if(a == "--stage-iterations")
+      {
+        stage_iterations = std::size_t(tools::parse_integer(a, o.value));
+        if(stage_iterations == 0 || stage_iterations > 1000000)
+          throw tools::Usage_error("--stage-iterations must be in [1, 1000000]");
       }
       else if(a == "--evolution-points")
       {
@@ -347,12 +364,14 @@ int main(int argc, char** argv)
     const Result result = BS::fit_blended_shape(
       points,
       BS::parameters::split_source(split_source,
+      BS::parameters::blend_stages(blend_stages,
+      BS::parameters::intermediate_stage_iterations(stage_iterations,
       BS::parameters::area_weight(area_weight,
       BS::parameters::maximum_evolution_points(evolution_points,
         BS::parameters::maximum_number_of_parts(max_parts,
         BS::parameters::number_of_threads(threads,
         BS::parameters::robust_weighting(robust ? BS::Robust_weighting::Mixture : BS::Robust_weighting::None,
-        BS::parameters::integrator(explicit_integrator ? BS::Integrator::Explicit : BS::Integrator::Gauss_newton)))))))
+        BS::parameters::integrator(explicit_integrator ? BS::Integrator::Explicit : BS::Integrator::Gauss_newton)))))))))
         .number_of_iterations(iterations)
         .random_seed(seed)
         .visitor(reporter));

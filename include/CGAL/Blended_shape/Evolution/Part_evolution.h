@@ -464,14 +464,6 @@ public:
   /// Crease segments smaller than this share of the points give no split proposal.
   static constexpr double minimum_segment_share = 0.03;
 
-  /// The iteration limit of each blending stage of a gradual part but the
-  /// last, which fits to rest (see try_split()). Measured on the
-  /// box/cylinder scan with range noise: a limit of 10 or 20 changed the
-  /// result (RMS_3 2.71 and 1.19 % of the diagonal), 30 gives that of no
-  /// limit (0.81 %); on the CAD mug, where the stages of the second split
-  /// creep to the 100-iteration limit, it takes 11 s where no limit takes 19 s.
-  static constexpr std::size_t intermediate_stage_iterations = 30;
-
   /*!
   Splits the current model (at rest) as `proposal` says, fits it to rest and
   keeps it if its description length falls; otherwise (or if the split is
@@ -486,7 +478,7 @@ public:
   region where the part meets the base, region_inside_part(), or where that
   has none the region propose_segment_split() gives on the base) and lowers
   its `h` in `blend_stages` stages, each fitted with `h` and the part held
-  (for at most intermediate_stage_iterations iterations), then fits to rest
+  (for at most `intermediate_stage_iterations` iterations), then fits to rest
   with `h` and the part free, the region's curve held where the proposal
   put it: the part comes in by steps of `h` of `1 / blend_stages` (each
   moves the surface inside the region that share of the way from the base
@@ -750,10 +742,8 @@ private:
   // the stage rests far from the points (on the box/cylinder scan the third
   // stage rested at 1.8 times the energy), besides costing the first step 2
   // to 4 times a later one. The stages before the last stop after
-  // intermediate_stage_iterations (the last fits to rest): only the last
-  // stage's rest is judged, and where a stage creeps (a part's exponents
-  // near a box's, on the CAD mug: 100 iterations a stage) the cap bounds
-  // its cost. `m_fitter` is the first stage's fitter (stage_fitter());
+  // Evolution_settings::intermediate_stage_iterations (the last fits to
+  // rest). `m_fitter` is the first stage's fitter (stage_fitter());
   // `fit_settings` are those of the fits before the split. Returns the last
   // fit's status (an aborted stage ends it).
   template <class Visitor>
@@ -791,7 +781,7 @@ private:
     shape.hold_blending_region(blend, true);
     Fitting_settings settings = fit_settings;
     if(k < stages)
-      settings.maximum_iterations = (std::min)(settings.maximum_iterations, intermediate_stage_iterations);
+      settings.maximum_iterations = (std::min)(settings.maximum_iterations, m_settings.intermediate_stage_iterations);
     return std::make_unique<Fitter>(m_kept, Model(shape, from.translation(), from.quaternion()), settings);
   }
 

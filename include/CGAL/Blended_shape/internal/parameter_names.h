@@ -33,6 +33,7 @@ CGAL_BLENDED_SHAPE_EVOLUTION_SETTING(analysis_resolution)
 CGAL_BLENDED_SHAPE_EVOLUTION_SETTING(maximum_evolution_points)
 CGAL_BLENDED_SHAPE_EVOLUTION_SETTING(split_source)
 CGAL_BLENDED_SHAPE_EVOLUTION_SETTING(blend_stages)
+CGAL_BLENDED_SHAPE_EVOLUTION_SETTING(intermediate_stage_iterations)
 // fit_superquadric() alone
 CGAL_BLENDED_SHAPE_PARAMETER(reference_mesh)
 CGAL_BLENDED_SHAPE_PARAMETER(try_all_axes)
