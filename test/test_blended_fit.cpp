@@ -203,6 +203,8 @@ void test_bad_input(const Temp_dir& dir)
     {quote(dir / "five.xyz") + " --splits sideways", 2},
     {quote(dir / "five.xyz") + " --area-weight -1", 2},
     {quote(dir / "five.xyz") + " --area-weight x", 2},
+    {quote(dir / "five.xyz") + " --blend-stages 0", 2},
+    {quote(dir / "five.xyz") + " --stage-iterations 0", 2},
     {quote(dir / "five.xyz") + " --json", 2},           // missing value
     {quote(dir / "a.xyz") + " " + quote(dir / "b.xyz"), 2}};
   for(const Case& c : cases)
@@ -414,6 +416,23 @@ void test_any_scale(const Temp_dir& dir)
   blended_shape_test::report("blended_fit_any_scale");
 }
 
+// The manual's copy of the usage text (its section on blended_fit) is the
+// text --help prints: a new option shows up in the manual too.
+void test_manual_usage(const Temp_dir& dir)
+{
+  std::string out;
+  BS_CHECK(run(quote(tool) + " --help", dir, nullptr, &out) == 0, "--help");
+  const std::string manual = read_file(BLENDED_SHAPE_MANUAL);
+  const std::string heading = "\\subsection BlendedShapeSecToolFit blended_fit\n\n\\verbatim\n";
+  const std::size_t start = manual.find(heading);
+  const std::size_t end = start == std::string::npos ? start : manual.find("\\endverbatim", start);
+  BS_CHECK(end != std::string::npos, "the manual has no usage block of blended_fit");
+  if(end != std::string::npos)
+    BS_CHECK(manual.substr(start + heading.size(), end - start - heading.size()) == out,
+             "the manual's usage text of blended_fit is not what blended_fit --help prints:\n" << out);
+  blended_shape_test::report("blended_fit_manual_usage");
+}
+
 } // namespace
 
 int main()
@@ -425,6 +444,7 @@ int main()
   test_parts_run(dir);
   test_strays(dir);
   test_any_scale(dir);
+  test_manual_usage(dir);
   blended_shape_test::report("test_blended_fit");
   return blended_shape_test::exit_code();
 }
