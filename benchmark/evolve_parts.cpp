@@ -10,7 +10,7 @@
 //
 // --evolution-points N: Evolution_settings::maximum_evolution_points (default
 // 4000; 0: evolution on all points). --splits: Evolution_settings::split_source
-// (default forces).
+// (default creases).
 //
 // Data: the box/cylinder CAD object scanned from the default camera (the
 // paper's Figure 18 first row), the bundled real mug scan, an ellipsoid

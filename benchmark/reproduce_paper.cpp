@@ -24,7 +24,7 @@
 // Chamfer columns are then left empty (the model is not one superquadric).
 // --evolution-points N: Evolution_settings::maximum_evolution_points (default
 // 4000; 0: evolution on all points). --splits: Evolution_settings::split_source
-// (default forces). --area-weight W: Fitting_settings::area_weight (default
+// (default creases). --area-weight W: Fitting_settings::area_weight (default
 // 0: the paper's fit, no area term). --blend-stages N, --stage-iterations N:
 // Evolution_settings::blend_stages (default 4) and
 // intermediate_stage_iterations (default 30).

@@ -256,7 +256,7 @@ void test_good_run(const Temp_dir& dir)
   BS_CHECK(out.find("\"events\": [") != std::string::npos && count_of(out, "\"kind\": \"split\"") == 0,
            "the evolution events: " << out);
   BS_CHECK(count_of(err, "blended_fit: event ") == events, "progress does not name the " << events << " events");
-  BS_CHECK(err.find("part evolution: force analysis") != std::string::npos &&
+  BS_CHECK(err.find("part evolution: split proposals") != std::string::npos &&
              count_of(err, "part evolution: fit of a split model") == events,
            "progress does not name the evolution phases");
   // The trace: the first fit, then the model after each event, as PLY and DOT.
@@ -339,8 +339,8 @@ void test_parts_run(const Temp_dir& dir)
   std::ostringstream kept_trace;
   kept_trace << "parts_trace/" << std::setw(2) << std::setfill('0') << kept << "_split.ply";
   BS_CHECK(kept > 0 && exists(dir / kept_trace.str()), "no trace of the kept split (" << kept_trace.str() << ")");
-  BS_CHECK(evolution.is_object() && evolution.value("split_source", std::string()) == "forces",
-           "the summary does not name the split source (forces by default)");
+  BS_CHECK(evolution.is_object() && evolution.value("split_source", std::string()) == "creases",
+           "the summary does not name the split source (creases by default)");
   blended_shape_test::report("blended_fit_parts");
 }
 

@@ -386,10 +386,20 @@ struct Counting_visitor : BS::Default_evolution_visitor
   }
 };
 
+// Settings whose proposals come from the force analysis at rest (the
+// paper's rule; crease segments are the default): the tests of proposals,
+// undo and removal need a source that proposes splits on one superquadric.
+BS::Evolution_settings force_splits()
+{
+  BS::Evolution_settings s;
+  s.split_source = BS::Split_source::Force_regions;
+  return s;
+}
+
 // Evolution of the fit of one superquadric to `points`.
 template <class K>
 BS::Part_evolution<K> evolution_of(const std::vector<typename K::Point_3>& points,
-                                   const BS::Evolution_settings& settings = BS::Evolution_settings())
+                                   const BS::Evolution_settings& settings = force_splits())
 {
   const auto first = BS::fit_superquadric(points);
   return BS::Part_evolution<K>(points, BS::make_blended_model(first.model), BS::Fitting_settings(), settings);
@@ -438,26 +448,32 @@ void test_proposals_hold_data()
 }
 
 // Seeded scans of single superquadrics (full and single view, noise 0.2 %
-// of the diagonal) come out of evolution with one part: every split tried
-// is undone, and each undo restores the model at rest bit for bit (its
+// of the diagonal) come out of evolution with one part, splits from force
+// regions or from crease segments (the default): every split tried is
+// undone, and each undo restores the model at rest bit for bit (its
 // parameters and structure). The visitor hears of every undo, of no split.
+// (The force analysis proposes splits here, so the undo is tested; the
+// crease segments of one superquadric are one piece, nothing to split off.)
 template <class K>
-void test_no_over_splitting()
+void test_no_over_splitting(BS::Split_source source)
 {
   std::size_t tried = 0;
+  BS::Evolution_settings settings;
+  settings.split_source = source;
+  const std::string name = BS::split_source_name(source);
   for(bool single_view : {false, true})
   {
     std::mt19937_64 rng(2); // (a seed whose fits at rest give proposals to try)
     const auto truth = BS::testing::random_superellipsoid<K>(rng);
     const auto points = BS::testing::synthetic_scan(truth, reduced ? 1500 : 3000, single_view, 0.002, rng);
-    BS::Part_evolution<K> evolution = evolution_of<K>(points);
+    BS::Part_evolution<K> evolution = evolution_of<K>(points, settings);
     evolution.fit_to_rest();
     const Eigen::VectorXd at_rest = evolution.model().parameters();
     Counting_visitor visitor;
     for(const BS::Split_proposal& p : evolution.propose_splits())
     {
       const bool kept = evolution.try_split(p, visitor);
-      BS_CHECK(!kept, (single_view ? "single" : "full") << " view: a split of one superquadric was kept");
+      BS_CHECK(!kept, name << ", " << (single_view ? "single" : "full") << " view: a split of one superquadric was kept");
       if(kept)
         return;
       ++tried;
@@ -467,8 +483,8 @@ void test_no_over_splitting()
     }
     const BS::Evolution_status status = evolution.run(visitor);
     BS_CHECK(evolution.model().shape().number_of_components() == 1,
-             (single_view ? "single" : "full") << " view: " << evolution.model().shape().number_of_components()
-                                               << " parts instead of 1");
+             name << ", " << (single_view ? "single" : "full") << " view: "
+                  << evolution.model().shape().number_of_components() << " parts instead of 1");
     BS_CHECK(!status.aborted && !status.part_limit_reached, "evolution of one superquadric: wrong status");
     std::size_t undone = 0;
     for(const auto& e : evolution.events())
@@ -478,7 +494,7 @@ void test_no_over_splitting()
                "an event kept (" << e.accepted() << ") against its description lengths "
                                  << e.description_length_before << " -> " << e.description_length_after);
     }
-    // run(): one fit to rest and one force analysis (no split kept); a split fit per event.
+    // run(): one fit to rest and one analysis with its proposals (no split kept); a split fit per event.
     BS_CHECK(visitor.phases[0] == 1 && visitor.phases[1] == 1 && visitor.phases[2] == evolution.events().size(),
              "evolution phases heard: " << visitor.phases[0] << " fits to rest, " << visitor.phases[1]
                                         << " analyses, " << visitor.phases[2] << " split fits for "
@@ -486,12 +502,19 @@ void test_no_over_splitting()
     BS_CHECK(visitor.splits == 0 && visitor.undos == undone && (undone == 0 || visitor.parts == 1),
              "the visitor heard of " << visitor.splits << " splits and " << visitor.undos << " undos, not 0 and "
                                      << undone << ", the last of a model of " << visitor.parts << " parts");
-    std::cout << "  one superquadric, " << (single_view ? "single" : "full") << " view: "
+    std::cout << "  one superquadric, " << (single_view ? "single" : "full") << " view, " << name << ": "
               << evolution.events().size() << " splits tried and undone, " << status.iterations << " iterations"
               << std::endl;
   }
   // Without a tried split, the restore above is not tested.
-  BS_CHECK(tried > 0, "no split was proposed on the noisy single superquadrics");
+  if(source == BS::Split_source::Force_regions)
+    BS_CHECK(tried > 0, "no split was proposed on the noisy single superquadrics");
+}
+template <class K>
+void test_no_over_splitting()
+{
+  for(BS::Split_source source : {BS::Split_source::Force_regions, BS::Split_source::Crease_segments})
+    test_no_over_splitting<K>(source);
 }
 
 // Parts that no longer pay for their parameters go. On a noisy scan of one
@@ -588,7 +611,7 @@ void test_evolution_limits()
   std::mt19937_64 rng(2); // (a seed whose fit at rest gives proposals)
   const auto truth = BS::testing::random_superellipsoid<K>(rng);
   const auto points = BS::testing::synthetic_scan(truth, 1500, false, 0.002, rng);
-  BS::Evolution_settings one_part;
+  BS::Evolution_settings one_part = force_splits();
   one_part.maximum_number_of_parts = 1;
   BS::Part_evolution<K> limited = evolution_of<K>(points, one_part);
   const BS::Evolution_status s = limited.run();
@@ -764,7 +787,8 @@ void test_split_model_fits_to_rest()
 }
 
 // The one-call evolving fit, fit_blended_shape(), on a noisy scan of one
-// superquadric (1500 points, a seed whose rest states give splits to try):
+// superquadric (1500 points, a seed whose rest states give force splits to
+// try; the splits from the force regions, so that there are some):
 // - one part, every split tried undone, the RMS at most the first fit's
 //   distance of all points;
 // - its named parameters reach the settings (a part limit of 1 tries no
@@ -782,7 +806,7 @@ void test_fit_blended_shape()
   const auto truth = BS::testing::random_superellipsoid<K>(rng);
   const std::vector<Point_3> points = BS::testing::synthetic_scan(truth, 1500, false, 0.002, rng);
   const auto fit = [](const std::vector<Point_3>& p, std::size_t threads) {
-    return BS::fit_blended_shape(p, BSP::number_of_threads(threads));
+    return BS::fit_blended_shape(p, BSP::number_of_threads(threads, BSP::split_source(BS::Split_source::Force_regions)));
   };
   const auto a = fit(points, 1);
   BS_CHECK(a.model.shape().number_of_components() == 1 && !a.events.empty(),
@@ -860,26 +884,28 @@ std::string structure_of(const BS::Blended_shape<K>& shape)
 }
 
 // Evolution on data made of parts is equivariant: the body with a part
-// (two parts at most) comes out as a body and a part split off it; the
+// (two parts at most) comes out as a body and a part split off it (a split
+// blend from the force regions, a part blend from the crease segments); the
 // input moved by a similarity (rotation, translation, scale 3.7) gives the
 // same structure (parts, blends, which is added to which). (Not the same
 // RMS: the fits reach rest states that differ with rounding, by several %
 // of the RMS here, as the manual says; the RMS ratio is printed.) Seed 2,
-// where the split kept lowers the description length by 78 (Simple_cartesian)
+// where the force split kept lowers the description length by 78 (Simple_cartesian)
 // and 42 (Epick): a decision by so narrow a margin that rounding can flip it
 // cannot be equivariant. With seed 1 the best split's margin is -0.15 with
 // Simple_cartesian (undone) and +22 with Epick (kept), see the manual.
 template <class K>
-void test_structure_equivariance()
+void test_structure_equivariance(BS::Split_source source)
 {
   const auto points = BS::testing::body_with_part_scan<K>(1500, 2);
   std::mt19937_64 rng(1);
-  const auto np = BS::parameters::maximum_number_of_parts(std::size_t(2));
+  const auto np = BS::parameters::maximum_number_of_parts(std::size_t(2), BS::parameters::split_source(source));
+  const std::string name = BS::split_source_name(source);
   const auto a = BS::fit_blended_shape(points, np);
   const std::string structure = structure_of(a.model.shape());
-  BS_CHECK(a.number_of_parts() == 2 && a.model.shape().number_of_blends() == 1 &&
-             a.model.shape().blend(0).kind() == BS::Blend_kind::Split,
-           "body with a part: " << a.number_of_parts() << " parts, structure " << structure);
+  const BS::Blend_kind kind = source == BS::Split_source::Force_regions ? BS::Blend_kind::Split : BS::Blend_kind::Part;
+  BS_CHECK(a.number_of_parts() == 2 && a.model.shape().number_of_blends() == 1 && a.model.shape().blend(0).kind() == kind,
+           name << ", body with a part: " << a.number_of_parts() << " parts, structure " << structure);
   // The part kept pays for its parameters: run() checked it after the split.
   for(const auto& e : a.events)
     BS_CHECK(e.kind != BS::Evolution_event_kind::Remove, "body with a part: the part split off was removed");
@@ -890,15 +916,21 @@ void test_structure_equivariance()
   const auto c = BS::fit_blended_shape(moved, np);
   const double rms_ratio = c.metrics.rms / (T.scale * a.metrics.rms);
   BS_CHECK(structure_of(c.model.shape()) == structure,
-           "body with a part, moved by a similarity: structure " << structure_of(c.model.shape()) << " instead of "
-                                                                 << structure);
-  std::cout << "  body with a part (" << points.size() << " points): " << a.number_of_parts() << " parts ("
-            << structure << "), RMS " << a.metrics.rms << "; moved by a similarity: RMS ratio " << rms_ratio
-            << std::endl;
+           name << ", body with a part, moved by a similarity: structure " << structure_of(c.model.shape())
+                << " instead of " << structure);
+  std::cout << "  body with a part (" << points.size() << " points), " << name << ": " << a.number_of_parts()
+            << " parts (" << structure << "), RMS " << a.metrics.rms << "; moved by a similarity: RMS ratio "
+            << rms_ratio << std::endl;
+}
+template <class K>
+void test_structure_equivariance()
+{
+  for(BS::Split_source source : {BS::Split_source::Force_regions, BS::Split_source::Crease_segments})
+    test_structure_equivariance<K>(source);
 }
 
 // Evolution on a sample (Evolution_settings::maximum_evolution_points) of
-// the body with a part (seed 2, 1500 points, two parts at most):
+// the body with a part (seed 2, 1500 points, two parts at most, force splits):
 // - a maximum of 0 (all points) or of the number of points changes nothing:
 //   the same bits as the default, which does not sample 1500 points;
 // - with a sample of 500 points the part is split off, the split test
@@ -912,17 +944,18 @@ void test_sampled_evolution()
 {
   namespace BSP = BS::parameters;
   const auto points = BS::testing::body_with_part_scan<K>(1500, 2);
-  const auto a = BS::fit_blended_shape(points, BSP::maximum_number_of_parts(std::size_t(2)));
+  const auto forces = BSP::split_source(BS::Split_source::Force_regions);
+  const auto a = BS::fit_blended_shape(points, BSP::maximum_number_of_parts(std::size_t(2), forces));
   for(std::size_t maximum : {std::size_t(0), points.size()})
   {
     const auto b = BS::fit_blended_shape(
-      points, BSP::maximum_evolution_points(maximum, BSP::maximum_number_of_parts(std::size_t(2))));
+      points, BSP::maximum_evolution_points(maximum, BSP::maximum_number_of_parts(std::size_t(2), forces)));
     BS_CHECK(BS::testing::same_bits(a.model.parameters(), b.model.parameters()) && a.events.size() == b.events.size() &&
                a.metrics.rms == b.metrics.rms,
              "maximum_evolution_points(" << maximum << ") changed the result");
   }
   const auto c = BS::fit_blended_shape(
-    points, BSP::maximum_evolution_points(std::size_t(500), BSP::maximum_number_of_parts(std::size_t(2))));
+    points, BSP::maximum_evolution_points(std::size_t(500), BSP::maximum_number_of_parts(std::size_t(2), forces)));
   const std::size_t fitted = points.size() - c.stray_points.size();
   BS_CHECK(c.number_of_parts() == 2 && c.metrics.number_of_points == fitted && c.status.converged,
            "evolution on 500 points: " << c.number_of_parts() << " parts, figures of " << c.metrics.number_of_points
@@ -1540,8 +1573,8 @@ void test_region_inside_part()
   }
 }
 
-// Evolution from crease segments (Split_source::Crease_segments) on the
-// cylinder on a box: one split, the cylinder's segment blended in as a
+// Evolution from crease segments (Split_source::Crease_segments, the
+// default) on the cylinder on a box: one split, the cylinder's segment blended in as a
 // gradual part (a Part blend), two parts, the same bits on one thread as
 // on all; stopped by the
 // callback while the part is blended in, the model is the one before, valid.
@@ -1555,8 +1588,9 @@ void test_crease_evolution()
   std::vector<typename K::Point_3> points;
   for(std::size_t i = 0; i < all.size(); i += reduced ? 6 : 3)
     points.emplace_back(all[i].x(), all[i].y(), all[i].z());
-  const auto np = BS::parameters::split_source(BS::Split_source::Crease_segments);
-  const auto r = BS::fit_blended_shape(points, np);
+  BS_CHECK(BS::Evolution_settings().split_source == BS::Split_source::Crease_segments,
+           "the default split source is not the crease segments");
+  const auto r = BS::fit_blended_shape(points);
   std::size_t kept = 0, from_segment = 0;
   double before = 0., after = 0.; // least-squares RMS of evolution, before and after the split kept
   for(const auto& e : r.events)
@@ -1584,8 +1618,7 @@ void test_crease_evolution()
             << 100. * r.metrics.rms_over_bbox_diagonal << " % of the diagonal" << std::endl;
   // the same bits on one thread as on all (the segment's own superquadric
   // fit and the staged fits included)
-  const auto one_thread = BS::fit_blended_shape(
-    points, BS::parameters::number_of_threads(std::size_t(1), BS::parameters::split_source(BS::Split_source::Crease_segments)));
+  const auto one_thread = BS::fit_blended_shape(points, BS::parameters::number_of_threads(std::size_t(1)));
   BS_CHECK(BS::testing::same_bits(one_thread.model.parameters(), r.model.parameters()) &&
              one_thread.metrics.iterations == r.metrics.iterations,
            "crease evolution: one thread and all threads differ");
@@ -1594,7 +1627,7 @@ void test_crease_evolution()
   std::size_t calls = 0;
   const std::size_t stop_at = r.first_fit.metrics.iterations + r.events.front().iteration + 5;
   const auto stopped = BS::fit_blended_shape(
-    points, np.callback(std::function<bool(double)>([&](double) { return ++calls < stop_at; })));
+    points, CGAL::parameters::callback(std::function<bool(double)>([&](double) { return ++calls < stop_at; })));
   BS_CHECK(stopped.status.aborted && stopped.number_of_parts() == 1 && stopped.model.shape().number_of_blends() == 0,
            "stopped while blending the part in: aborted " << stopped.status.aborted << ", "
                                                           << stopped.number_of_parts() << " parts");

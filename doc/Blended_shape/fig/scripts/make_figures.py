@@ -12,8 +12,8 @@ in the package build, and runs `blended_fit --trace` (default:
 build/bin/blended_fit of the source tree; build it, blended_scan and
 blended_make_object first) on the bundled mug scan and on a scan of the
 box/cylinder CAD object for the picture sequences of part evolution, with
-the default split proposals (the force analysis) and with crease segments
-(`--splits creases`), printing each run's figures for the captions; the
+the split proposals of the force analysis (`--splits forces`) and with
+those of crease segments (`--splits creases`, the default), printing each run's figures for the captions; the
 final hierarchy is drawn by Graphviz's dot if it is installed.
 """
 
@@ -289,13 +289,13 @@ def main():
     if os.path.exists(args.blended_fit):
         figure_evolution(args.blended_fit, os.path.join(ROOT, "data", "scans", "pcl_mug_scan.xyz"),
                          os.path.join(FIG, "mug_fit.png"),
-                         "blended_fit on data/scans/pcl_mug_scan.xyz (one stereo view): part evolution",
-                         scanner_view, 20, -110)
+                         "blended_fit --splits forces on data/scans/pcl_mug_scan.xyz (one stereo view): part evolution",
+                         scanner_view, 20, -110, extra=("--splits", "forces"))
         with tempfile.TemporaryDirectory() as tmp:
             scan = box_cylinder_scan(os.path.dirname(args.blended_fit), tmp)
             figure_evolution(args.blended_fit, scan, os.path.join(FIG, "box_cylinder_evolution.png"),
-                             "blended_fit on the box/cylinder CAD object scanned from one view (Fig. 19 of the paper)",
-                             lambda p: p, 20, -60)
+                             "blended_fit --splits forces on the box/cylinder CAD object scanned from one view (Fig. 19 of the paper)",
+                             lambda p: p, 20, -60, extra=("--splits", "forces"))
             figure_evolution(args.blended_fit, scan, os.path.join(FIG, "box_cylinder_creases.png"),
                              "blended_fit --splits creases on the same box/cylinder scan",
                              lambda p: p, 20, -60, extra=("--splits", "creases"))

@@ -79,18 +79,18 @@ inline const char* evolution_event_name(Evolution_event_kind k)
 enum class Evolution_phase
 {
   Fit_to_rest,    ///< the current model is fitted to rest (Part_evolution::fit_to_rest()): at the start, and after parts were removed
-  Force_analysis, ///< the forces at rest are analysed and splits proposed (Part_evolution::propose_splits())
+  Force_analysis, ///< the model at rest is analysed and splits proposed (Part_evolution::propose_splits(): force regions or crease segments, Evolution_settings::split_source)
   Split_fit       ///< a split model is fitted to rest, to be kept or undone (Part_evolution::try_split())
 };
 
 /// \ingroup PkgBlendedShapeEvolution
-/// The name of a phase, for progress output: "fit to rest", "force analysis", "fit of a split model".
+/// The name of a phase, for progress output: "fit to rest", "split proposals", "fit of a split model".
 inline const char* evolution_phase_name(Evolution_phase p)
 {
   switch(p)
   {
   case Evolution_phase::Fit_to_rest: return "fit to rest";
-  case Evolution_phase::Force_analysis: return "force analysis";
+  case Evolution_phase::Force_analysis: return "split proposals";
   default: return "fit of a split model";
   }
 }
@@ -187,15 +187,20 @@ void notify_phase(Visitor& visitor, Evolution_phase phase, std::size_t parts)
 \ingroup PkgBlendedShapeEvolution
 
 Part evolution (sec. 4.1, 5.4): a blended model fitted to points grows parts
-where the forces at its rest state say it cannot fit the data. run() repeats,
-until no split is kept:
+where its rest state says it cannot fit the data. run() repeats, until no
+split is kept:
 
 1. fit to rest (Deformable_model_fitter);
-2. the force analysis (Force_regions, equilibrated parts kept as regions)
-   and up to `maximum_split_tries` split proposals (propose_split()), from
-   the boundary with the largest flux difference down, one per pair of regions;
+2. up to `maximum_split_tries` split proposals, from where
+   Evolution_settings::split_source says: the crease segments of the data
+   (the default: a part fitted to a piece of the data between concave
+   creases, propose_segment_split(), blended in gradually, see
+   propose_splits()), or the force analysis (Force_regions, equilibrated
+   parts kept as regions; propose_split(), from the boundary with the
+   largest flux difference down, one per pair of regions), or both;
 3. for each proposal in turn: split (apply_split(), `h = 0`: no point of the
-   surface moves), fit to rest, and keep the split if it pays for its
+   surface moves; a crease segment's part comes in over
+   Evolution_settings::blend_stages stages), fit to rest, and keep the split if it pays for its
    parameters, otherwise restore the model exactly and try the next one;
 4. after a split is kept, remove the parts that no longer pay for their
    parameters (remove_unpaid_parts()) and fit to rest again if any went.
