@@ -184,7 +184,8 @@ void test_bad_input(const Temp_dir& dir)
   std::ofstream(dir / "empty.xyz").close();
   std::ofstream(dir / "garbage.xyz") << "1 2 three\n";
   std::ofstream(dir / "garbage.off") << "OFF\n3 1 0\n0 0\n";
-  struct Case { std::string args; int code; };
+  // `says`: what the message must contain, if anything (a range refused names the range)
+  struct Case { std::string args; int code; std::string says = std::string(); };
   const std::vector<Case> cases = {
     {quote(dir / "missing.xyz"), 1},
     {quote(dir / "empty.xyz"), 1},
@@ -195,10 +196,12 @@ void test_bad_input(const Temp_dir& dir)
     {quote(dir / "five.xyz") + " --bogus", 2},
     {"", 2},                                            // no input
     {quote(dir / "five.xyz") + " --max-iterations abc", 2},
-    {quote(dir / "five.xyz") + " --max-iterations 0", 2},
+    {quote(dir / "five.xyz") + " --max-iterations 0", 2, "--max-iterations must be in [1, 1000000], not 0"},
+    {quote(dir / "five.xyz") + " --threads 5000", 2, "--threads must be in [0, 4096] (0: all cores), not 5000"},
+    {quote(dir / "five.xyz") + " --seed 4294967296", 2, "--seed must be in [0, 4294967295]"},
     {quote(dir / "five.xyz") + " --seed -3", 2},
     {quote(dir / "five.xyz") + " --mesh " + quote(dir / "m.stl"), 2},
-    {quote(dir / "five.xyz") + " --max-parts 0", 2},
+    {quote(dir / "five.xyz") + " --max-parts 0", 2, "--max-parts must be in [1, 1000]"},
     {quote(dir / "five.xyz") + " --no-split --max-parts 3", 2},
     {quote(dir / "five.xyz") + " --splits sideways", 2},
     {quote(dir / "five.xyz") + " --area-weight -1", 2},
@@ -218,6 +221,8 @@ void test_bad_input(const Temp_dir& dir)
                          dir, &err);
     BS_CHECK(code == c.code, "blended_fit " << c.args << ": exit " << code << " instead of " << c.code);
     BS_CHECK(err.rfind("blended_fit: ", 0) == 0 && err.size() > 20, "no clear message: '" << err << "'");
+    BS_CHECK(err.find(c.says) != std::string::npos, "blended_fit " << c.args << ": the message '" << err
+                                                                      << "' does not say '" << c.says << "'");
     BS_CHECK(dir.number_of_files() == files, "blended_fit " << c.args << " left a file behind");
   }
   blended_shape_test::report("blended_fit_bad_input");

@@ -275,10 +275,8 @@ int main(int argc, char** argv)
       else if(a == "--explicit") explicit_integrator = true;
       else if(a == "--max-parts")
       {
-        max_parts = std::size_t(tools::parse_integer(a, o.value));
+        max_parts = std::size_t(tools::parse_integer_in(a, o.value, 1, 1000));
         max_parts_given = true;
-        if(max_parts == 0 || max_parts > 1000)
-          throw tools::Usage_error("--max-parts must be in [1, 1000]");
       }
       else if(a == "--splits")
       {
@@ -294,17 +292,9 @@ int main(int argc, char** argv)
           throw tools::Usage_error("--area-weight must be a finite number >= 0");
       }
       else if(a == "--blend-stages")
-      {
-        blend_stages = std::size_t(tools::parse_integer(a, o.value));
-        if(blend_stages == 0 || blend_stages > 100)
-          throw tools::Usage_error("--blend-stages must be in [1, 100]");
-      }
+        blend_stages = std::size_t(tools::parse_integer_in(a, o.value, 1, 100));
       else if(a == "--stage-iterations")
-      {
-        stage_iterations = std::size_t(tools::parse_integer(a, o.value));
-        if(stage_iterations == 0 || stage_iterations > 1000000)
-          throw tools::Usage_error("--stage-iterations must be in [1, 1000000]");
-      }
+        stage_iterations = std::size_t(tools::parse_integer_in(a, o.value, 1, 1000000));
       else if(a == "--evolution-points")
       {
         evolution_points = std::size_t(tools::parse_integer(a, o.value));
@@ -313,24 +303,11 @@ int main(int argc, char** argv)
                                    std::to_string(BS::minimum_evolution_points));
       }
       else if(a == "--max-iterations")
-      {
-        iterations = std::size_t(tools::parse_integer(a, o.value));
-        if(iterations == 0 || iterations > 1000000)
-          throw tools::Usage_error("--max-iterations must be in [1, 1000000]");
-      }
+        iterations = std::size_t(tools::parse_integer_in(a, o.value, 1, 1000000));
       else if(a == "--threads")
-      {
-        threads = std::size_t(tools::parse_integer(a, o.value));
-        if(threads > 4096)
-          throw tools::Usage_error("--threads must be in [0, 4096] (0: all cores)");
-      }
+        threads = std::size_t(tools::parse_integer_in(a, o.value, 0, 4096, "0: all cores"));
       else if(a == "--seed")
-      {
-        const auto s = tools::parse_integer(a, o.value);
-        if(s > 0xffffffffu)
-          throw tools::Usage_error("--seed must fit in 32 bits");
-        seed = static_cast<unsigned int>(s);
-      }
+        seed = static_cast<unsigned int>(tools::parse_integer_in(a, o.value, 0, 0xffffffffu, "32 bits"));
     }
     for(const std::string& a : line.operands)
       if(input.empty()) input = a;

@@ -131,6 +131,18 @@ inline std::uint64_t parse_integer(const std::string& flag, const std::string& t
   return n;
 }
 
+/// A non-negative integer in [low, high]; the error names the range (and
+/// `note`, if given, what a value in it means, e.g. "0: all cores").
+inline std::uint64_t parse_integer_in(const std::string& flag, const std::string& text, std::uint64_t low,
+                                      std::uint64_t high, const std::string& note = std::string())
+{
+  const std::uint64_t n = parse_integer(flag, text);
+  if(n < low || n > high)
+    throw Usage_error(flag + " must be in [" + std::to_string(low) + ", " + std::to_string(high) + "]" +
+                      (note.empty() ? std::string() : " (" + note + ")") + ", not " + text);
+  return n;
+}
+
 /// Exactly `n` comma-separated finite numbers.
 inline std::vector<double> parse_numbers(const std::string& flag, const std::string& text, std::size_t n)
 {
