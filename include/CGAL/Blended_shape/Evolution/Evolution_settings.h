@@ -65,12 +65,15 @@ struct Evolution_settings
   /// Evolution stops once the RMS distance of the points to the model, over
   /// the diagonal of their bounding box, is at most this (0: never).
   double target_accuracy = 0.;
-  /// At each rest state, at most this many boundaries (in decreasing order of
-  /// their flux difference) are tried before evolution ends.
+  /// At each rest state, at most this many proposals are tried before
+  /// evolution ends (crease segments in decreasing size; force boundaries in
+  /// decreasing order of their flux difference).
   std::size_t maximum_split_tries = 3;
-  /// `eps_F` of the force classes, in standard errors of the noise (Force_regions).
+  /// `eps_F` of the force classes, in standard errors of the noise
+  /// (Force_regions; used by the force splits only, Split_source::Force_regions or Both).
   double threshold_factor = 3.;
-  /// The resolution of the chart meshes of the force analysis (Blended_shape_pieces).
+  /// The resolution of the chart meshes of the force analysis
+  /// (Blended_shape_pieces; used by the force splits only).
   int analysis_resolution = 16;
   /// fit_blended_shape() evolves the model on at most this many of the
   /// points (every `k`-th point of those not isolated, in input order, `k`

@@ -79,7 +79,7 @@ inline const char* evolution_event_name(Evolution_event_kind k)
 enum class Evolution_phase
 {
   Fit_to_rest,    ///< the current model is fitted to rest (Part_evolution::fit_to_rest()): at the start, and after parts were removed
-  Force_analysis, ///< the model at rest is analysed and splits proposed (Part_evolution::propose_splits(): force regions or crease segments, Evolution_settings::split_source)
+  Split_proposals, ///< the model at rest is analysed and splits proposed (Part_evolution::propose_splits(): force regions or crease segments, Evolution_settings::split_source)
   Split_fit       ///< a split model is fitted to rest, to be kept or undone (Part_evolution::try_split())
 };
 
@@ -90,7 +90,7 @@ inline const char* evolution_phase_name(Evolution_phase p)
   switch(p)
   {
   case Evolution_phase::Fit_to_rest: return "fit to rest";
-  case Evolution_phase::Force_analysis: return "split proposals";
+  case Evolution_phase::Split_proposals: return "split proposals";
   default: return "fit of a split model";
   }
 }
@@ -592,7 +592,7 @@ public:
       }
       bool kept = false;
       const std::size_t parts_before = model().shape().number_of_components();
-      internal::notify_phase(visitor, Evolution_phase::Force_analysis, parts_before);
+      internal::notify_phase(visitor, Evolution_phase::Split_proposals, parts_before);
       for(const Split_proposal& p : propose_splits())
         if((kept = try_split(p, visitor, callback)) || m_last_fit.aborted)
           break;
