@@ -386,20 +386,25 @@ struct Counting_visitor : BS::Default_evolution_visitor
   }
 };
 
-// Settings whose proposals come from the force analysis at rest (the
-// paper's rule; crease segments are the default): the tests of proposals,
-// undo and removal need a source that proposes splits on one superquadric.
-BS::Evolution_settings force_splits()
+// Settings whose proposals come from `source`; by default the force
+// analysis at rest (the paper's rule; crease segments are the default of
+// Evolution_settings): the tests of proposals, undo and removal need a
+// source that proposes splits on one superquadric.
+BS::Evolution_settings splits_from(BS::Split_source source = BS::Split_source::Force_regions)
 {
   BS::Evolution_settings s;
-  s.split_source = BS::Split_source::Force_regions;
+  s.split_source = source;
   return s;
 }
+
+// The two sources of split proposals, for the tests that run both.
+constexpr BS::Split_source each_split_source[] = {BS::Split_source::Force_regions,
+                                                   BS::Split_source::Crease_segments};
 
 // Evolution of the fit of one superquadric to `points`.
 template <class K>
 BS::Part_evolution<K> evolution_of(const std::vector<typename K::Point_3>& points,
-                                   const BS::Evolution_settings& settings = force_splits())
+                                   const BS::Evolution_settings& settings = splits_from())
 {
   const auto first = BS::fit_superquadric(points);
   return BS::Part_evolution<K>(points, BS::make_blended_model(first.model), BS::Fitting_settings(), settings);
@@ -458,8 +463,7 @@ template <class K>
 void test_no_over_splitting(BS::Split_source source)
 {
   std::size_t tried = 0;
-  BS::Evolution_settings settings;
-  settings.split_source = source;
+  const BS::Evolution_settings settings = splits_from(source);
   const std::string name = BS::split_source_name(source);
   for(bool single_view : {false, true})
   {
@@ -513,7 +517,7 @@ void test_no_over_splitting(BS::Split_source source)
 template <class K>
 void test_no_over_splitting()
 {
-  for(BS::Split_source source : {BS::Split_source::Force_regions, BS::Split_source::Crease_segments})
+  for(BS::Split_source source : each_split_source)
     test_no_over_splitting<K>(source);
 }
 
@@ -611,7 +615,7 @@ void test_evolution_limits()
   std::mt19937_64 rng(2); // (a seed whose fit at rest gives proposals)
   const auto truth = BS::testing::random_superellipsoid<K>(rng);
   const auto points = BS::testing::synthetic_scan(truth, 1500, false, 0.002, rng);
-  BS::Evolution_settings one_part = force_splits();
+  BS::Evolution_settings one_part = splits_from();
   one_part.maximum_number_of_parts = 1;
   BS::Part_evolution<K> limited = evolution_of<K>(points, one_part);
   const BS::Evolution_status s = limited.run();
@@ -925,7 +929,7 @@ void test_structure_equivariance(BS::Split_source source)
 template <class K>
 void test_structure_equivariance()
 {
-  for(BS::Split_source source : {BS::Split_source::Force_regions, BS::Split_source::Crease_segments})
+  for(BS::Split_source source : each_split_source)
     test_structure_equivariance<K>(source);
 }
 

@@ -83,10 +83,10 @@ struct Evolution_settings
   std::size_t maximum_evolution_points = 4000;
   /// Where split proposals come from (Split_source). Crease segments by
   /// default: on the box/cylinder scan they give the paper's two parts (the
-  /// box and the cylinder) at the noise on every seed tried, on the CAD mug
-  /// the body and the handle, on single superquadrics one part, where the
-  /// force regions split off 3 to 8 parts, none of them the cylinder or the
-  /// handle (the manual's tables, Part Evolution). Force regions remain the
+  /// box and the cylinder) at the noise on every seed tried, where the force
+  /// regions split off 3 to 8 parts, none of them the cylinder; on the CAD
+  /// mug the body and the handle; on single superquadrics one part (the
+  /// manual's tables, Part Evolution). Force regions remain the
   /// paper's own rule and the better one where parts meet without a crease.
   Split_source split_source = Split_source::Crease_segments;
   /// A part blended in gradually (Split_source::Crease_segments) is

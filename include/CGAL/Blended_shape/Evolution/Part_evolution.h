@@ -78,9 +78,9 @@ inline const char* evolution_event_name(Evolution_event_kind k)
 /// The phases of Part_evolution::run(), as Default_evolution_visitor::on_evolution_phase() hears of them.
 enum class Evolution_phase
 {
-  Fit_to_rest,    ///< the current model is fitted to rest (Part_evolution::fit_to_rest()): at the start, and after parts were removed
+  Fit_to_rest,     ///< the current model is fitted to rest (Part_evolution::fit_to_rest()): at the start, and after parts were removed
   Split_proposals, ///< the model at rest is analysed and splits proposed (Part_evolution::propose_splits(): force regions or crease segments, Evolution_settings::split_source)
-  Split_fit       ///< a split model is fitted to rest, to be kept or undone (Part_evolution::try_split())
+  Split_fit        ///< a split model is fitted to rest, to be kept or undone (Part_evolution::try_split())
 };
 
 /// \ingroup PkgBlendedShapeEvolution
