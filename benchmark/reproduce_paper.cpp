@@ -20,8 +20,9 @@
 // subsets of the multi-start search: other seeds show how much a result
 // depends on which local minimum of the first fit evolution starts from.
 // --evolve: fit_blended_shape() (its least-squares start and evolution; with
-// --robust a one-part result is the robust fit); the iteration / sweep and
-// Chamfer columns are then left empty (the model is not one superquadric).
+// --robust a one-part result is the robust fit); the iteration / sweep
+// column is then left empty (the model is not one superquadric), the
+// Chamfer distance is that of the blended model (symmetric_chamfer_distance()).
 // --evolution-points N: Evolution_settings::maximum_evolution_points (default
 // 4000; 0: evolution on all points). --splits: Evolution_settings::split_source
 // (default creases). --area-weight W: Fitting_settings::area_weight (default
@@ -267,12 +268,13 @@ int main(int argc, char** argv)
     const double diag = BS::testing::bounding_box_diagonal(e.points);
     if(evolve)
     {
-      const auto r = BS::fit_blended_shape(
-        e.points, BS::parameters::split_source(
-                    split_source, BS::parameters::blend_stages(
-                                    blend_stages, BS::parameters::intermediate_stage_iterations(
-                                                    stage_iterations,
-                                                    BS::parameters::maximum_evolution_points(evolution_points, np)))));
+      const auto evolution_np = BS::parameters::split_source(
+        split_source, BS::parameters::blend_stages(
+                        blend_stages, BS::parameters::intermediate_stage_iterations(
+                                        stage_iterations, BS::parameters::maximum_evolution_points(evolution_points, np))));
+      const auto r = e.reference
+                       ? BS::fit_blended_shape(e.points, BS::parameters::reference_mesh(&*e.reference, evolution_np))
+                       : BS::fit_blended_shape(e.points, evolution_np);
       f.metrics = r.metrics;
       f.parts = r.number_of_parts();
       f.holes = r.model.shape().holes().size();
@@ -283,12 +285,12 @@ int main(int argc, char** argv)
       const auto r = e.reference ? BS::fit_superquadric(e.points, BS::parameters::reference_mesh(&*e.reference, np))
                                  : BS::fit_superquadric(e.points, np);
       f.metrics = r.metrics;
-      if(r.metrics.chamfer_distance)
-        chamfer = fixed(*r.metrics.chamfer_distance / diag, 4);
       f.iteration_over_sweep = r.metrics.seconds / double((std::max)(r.metrics.iterations, std::size_t(1))) /
                                closest_point_sweep_seconds(e.points, r.meshes);
     }
     const BS::Fit_metrics& m = f.metrics;
+    if(m.chamfer_distance)
+      chamfer = fixed(*m.chamfer_distance / diag, 4);
     const Paper_row& p = paper[e.paper_row];
     const std::string ratio = f.iteration_over_sweep ? fixed(*f.iteration_over_sweep, 2) : std::string("-");
     std::ostringstream row;

@@ -7,7 +7,9 @@
 
 #include <blended_shape_testing/synthetic_scans.h>
 
+#include <CGAL/Blended_shape/Blending/Blended_shape_mesh.h>
 #include <CGAL/Blended_shape/IO/Blended_shape_io.h>
+#include <CGAL/IO/OFF.h>
 
 #include <CGAL/IO/polygon_soup_io.h>
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
@@ -208,6 +210,8 @@ void test_bad_input(const Temp_dir& dir)
     {quote(dir / "five.xyz") + " --area-weight x", 2},
     {quote(dir / "five.xyz") + " --blend-stages 0", 2},
     {quote(dir / "five.xyz") + " --stage-iterations 0", 2},
+    {quote(dir / "five.xyz") + " --reference " + quote(dir / "missing.off"), 1, "missing.off"},
+    {quote(dir / "five.xyz") + " --reference " + quote(dir / "garbage.off"), 1, "garbage.off"},
     {quote(dir / "five.xyz") + " --json", 2},           // missing value
     {quote(dir / "a.xyz") + " " + quote(dir / "b.xyz"), 2}};
   for(const Case& c : cases)
@@ -321,12 +325,34 @@ void test_good_run(const Temp_dir& dir)
 void test_parts_run(const Temp_dir& dir)
 {
   write_points(dir / "parts.xyz", BS::testing::body_with_part_scan<K>(1500, 1));
+  // --reference: a mesh of the scan's body (its part left out), and the same
+  // moved by 10 along x: the Chamfer distance of the model (two parts, about
+  // 2 across) to it is below 0.5, to the moved one 10 give or take 2, in the
+  // points' unit
+  for(const double shift : {0., 10.})
+  {
+    CGAL::Surface_mesh<K::Point_3> body = BS::make_unified_mesh(BS::Blended_shape<K>(BS::Superquadric_ellipsoid<K>(1., 0.8, 0.6, 1., 1.)));
+    for(auto v : body.vertices())
+      body.point(v) = body.point(v) + K::Vector_3(shift, 0., 0.);
+    CGAL::IO::write_OFF(dir / (shift == 0. ? "body.off" : "moved_body.off"), body);
+  }
   std::string err, out;
-  BS_CHECK(run(quote(tool) + " " + quote(dir / "parts.xyz") + " --max-parts 2 --trace " + quote(dir / "parts_trace"),
+  BS_CHECK(run(quote(tool) + " " + quote(dir / "parts.xyz") + " --max-parts 2 --trace " + quote(dir / "parts_trace") +
+                 " --reference " + quote(dir / "body.off"),
                dir, &err, &out) == 0,
            "run on data made of parts failed: " << err);
   Json_checker summary(out);
   BS_CHECK(summary.valid(), "the summary is not valid JSON:\n" << out);
+  std::string moved_out;
+  BS_CHECK(run(quote(tool) + " " + quote(dir / "parts.xyz") + " --quiet --max-parts 2 --reference " +
+                 quote(dir / "moved_body.off"), dir, nullptr, &moved_out) == 0, "--reference, moved");
+  Json_checker moved(moved_out);
+  BS_CHECK(moved.valid(), "the summary is not valid JSON:\n" << moved_out);
+  BS_CHECK(summary.numbers.count("chamfer_distance") == 1 && summary.numbers["chamfer_distance"] > 0. &&
+             summary.numbers["chamfer_distance"] < 0.5 && moved.numbers["chamfer_distance"] > 8. &&
+             moved.numbers["chamfer_distance"] < 12.,
+           "Chamfer distance to the body " << summary.numbers["chamfer_distance"] << ", moved by 10 "
+                                           << moved.numbers["chamfer_distance"]);
   BS_CHECK(summary.numbers["parts"] == 2 && summary.numbers["genus"] == 0 && count_of(out, "\"accepted\": true") == 1,
            "parts " << summary.numbers["parts"] << ", genus " << summary.numbers["genus"] << ":\n" << out);
   BS_CHECK(err.find("  parts 2  holes 0") != std::string::npos, "the progress of a split model's fit does not count its parts");

@@ -5,12 +5,15 @@
 // fixed correspondences across steps (both integrators), and the recovery of
 // a body with a part and of a torus-like body with a hole from noisy samples;
 // a fit going on after a split as a new fit would (restructure()); held
-// parameters (hold_parameter()) kept by the fit.
+// parameters (hold_parameter()) kept by the fit; the Chamfer distance of a
+// blended model.
 #include "test_util.h"
 #include "blended_shape_test_util.h"
 
 #include <CGAL/Blended_shape/Fitting/Deformable_model_fitter.h>
 #include <CGAL/Blended_shape/Fitting/Deformable_blended_model.h>
+#include <CGAL/Blended_shape/Fitting/Fit_metrics.h>
+#include <CGAL/Blended_shape/Blending/Blended_shape_mesh.h>
 #include <CGAL/Blended_shape/Fitting/sample_model.h>
 #include <blended_shape_testing/same_bits.h>
 
@@ -727,6 +730,40 @@ void test_held_parameter(const Model<K>& truth)
   }
 }
 
+// symmetric_chamfer_distance() of a blended model: against a fine unified
+// mesh of the model itself it is the tessellations' chord error only (a
+// sampled discarded part, a piece left where it is not, or the pose not
+// applied would each put it at the model's size); against that mesh moved
+// by `shift` it is of the order of the shift; and a split, which moves no
+// point, leaves it the same to the sampling noise.
+template <class K>
+void test_chamfer_distance(const std::string& name, const Model<K>& m, const Region::Parameter_vector& split_region)
+{
+  typedef CGAL::Surface_mesh<typename K::Point_3> Mesh;
+  const auto reference = [&](double shift) {
+    Mesh mesh = BS::make_unified_mesh(m.shape(), 48);
+    for(auto v : mesh.vertices())
+    {
+      const auto p = m.placed(mesh.point(v));
+      mesh.point(v) = typename K::Point_3(p.x() + shift, p.y(), p.z());
+    }
+    return mesh;
+  };
+  const double shift = 0.05;
+  const double self = BS::symmetric_chamfer_distance(m, reference(0.));
+  const double moved = BS::symmetric_chamfer_distance(m, reference(shift));
+  BS_CHECK(self < 0.05 * shift && moved > 0.3 * shift && moved < shift,
+           name << ": Chamfer distance to its own mesh " << self << ", to it moved by " << shift << ": " << moved);
+  BS::Blended_shape<K> split_shape = m.shape();
+  split_shape.split(0, 0, split_region, 0.05);
+  const Model<K> split(split_shape, m.translation(), m.quaternion());
+  const double moved_split = BS::symmetric_chamfer_distance(split, reference(shift));
+  BS_CHECK(std::abs(moved_split - moved) < 0.03 * moved,
+           name << ": a split changed the Chamfer distance from " << moved << " to " << moved_split);
+  std::cout << "  " << name << ": Chamfer distance to its own mesh " << self << ", moved by " << shift << " "
+            << moved << ", split " << moved_split << std::endl;
+}
+
 template <class K>
 void run(const char* kernel)
 {
@@ -748,6 +785,9 @@ void run(const char* kernel)
   test_refused_region_moves<K>(nose);
   test_held_parameter<K>(nose);
   test_same_bits_at_any_number_of_threads<K>(nose);
+  test_chamfer_distance<K>("body with nose", nose, Region::make_parameters(0., 0., 0.3, 0.3, 0., 0.9, 0.));
+  // (near the equator, clear of the hole's end at the pole)
+  test_chamfer_distance<K>("body with hole", hole, Region::make_parameters(0.85, 0., 0.1, 0.1, 0., 0.9, 0.));
   std::cout << "blended fitting with " << kernel
             << (blended_shape_test::failures() == before ? ": SUCCESS" : ": FAILED") << std::endl;
 }

@@ -38,7 +38,9 @@
 #include <CGAL/Blended_shape/Primitives/Superquadric_ellipsoid.h>
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Polygon_mesh_processing/triangulate_faces.h>
 #include <CGAL/Simple_cartesian.h>
+#include <CGAL/boost/graph/generators.h>
 
 #include <Eigen/Geometry>
 
@@ -1594,7 +1596,18 @@ void test_crease_evolution()
     points.emplace_back(all[i].x(), all[i].y(), all[i].z());
   BS_CHECK(BS::Evolution_settings().split_source == BS::Split_source::Crease_segments,
            "the default split source is not the crease segments");
-  const auto r = BS::fit_blended_shape(points);
+  // (with a reference mesh: the box, whose Chamfer distance to the result
+  // of two parts is reported, and changes nothing else: see one_thread below)
+  CGAL::Surface_mesh<typename K::Point_3> box;
+  CGAL::make_hexahedron(typename K::Point_3(-1., -1., -1.), typename K::Point_3(1., -1., -1.),
+                        typename K::Point_3(1., 1., -1.), typename K::Point_3(-1., 1., -1.),
+                        typename K::Point_3(-1., 1., 0.), typename K::Point_3(-1., -1., 0.),
+                        typename K::Point_3(1., -1., 0.), typename K::Point_3(1., 1., 0.), box);
+  CGAL::Polygon_mesh_processing::triangulate_faces(box);
+  const auto r = BS::fit_blended_shape(points, BS::parameters::reference_mesh(&box));
+  BS_CHECK(r.metrics.chamfer_distance && !r.first_fit.metrics.chamfer_distance &&
+             *r.metrics.chamfer_distance == BS::symmetric_chamfer_distance(r.model, box),
+           "crease evolution: the Chamfer distance to the reference mesh is not the result's");
   std::size_t kept = 0, from_segment = 0;
   double before = 0., after = 0.; // least-squares RMS of evolution, before and after the split kept
   for(const auto& e : r.events)

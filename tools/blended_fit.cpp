@@ -9,6 +9,7 @@
 #include <CGAL/Blended_shape/IO/Blended_shape_io.h>
 #include <CGAL/Blended_shape/IO/Blended_shape_mesh_io.h>
 #include <CGAL/Blended_shape/IO/read_points.h>
+#include <CGAL/Blended_shape/IO/read_triangle_mesh.h>
 #include <CGAL/Blended_shape/internal/write_file_atomically.h>
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
@@ -65,6 +66,9 @@ const char* usage =
   "  --seed N             random seed for the point subsets (default 0)\n"
   "  --strays FILE        write the indices (from 0, in input order) of the points the model\n"
   "                       leaves out (stray or isolated), one a line\n"
+  "  --reference MESH     a mesh of the scanned object (.off .obj .ply .stl): the JSON then\n"
+  "                       gives the model's symmetric Chamfer distance to it (in the\n"
+  "                       points' unit)\n"
   "  --robust             a one-part result down-weights stray points (the default: a Gaussian\n"
   "                       and uniform mixture, see the manual); evolution fits the points that\n"
   "                       are not isolated by least squares\n"
@@ -155,6 +159,8 @@ std::string summary_text(const Result& r, const std::string& input, bool no_spli
   s["rms"] = number(m.rms);
   s["rms_over_bbox_diagonal"] = number(m.rms_over_bbox_diagonal);
   s["stray_points"] = double(r.stray_points.size());
+  if(m.chamfer_distance) // (with --reference)
+    s["chamfer_distance"] = number(*m.chamfer_distance);
   s["parts"] = double(r.number_of_parts());
   s["holes"] = double(r.model.shape().holes().size());
   s["genus"] = double(r.model.shape().genus());
@@ -245,12 +251,12 @@ private:
 int main(int argc, char** argv)
 {
   const auto options = tools::known_options({"--json", "--mesh", "--hierarchy", "--model", "--max-iterations", "--seed",
-                                              "--threads", "--strays", "--max-parts", "--trace",
+                                              "--threads", "--strays", "--reference", "--max-parts", "--trace",
                                               "--evolution-points", "--splits", "--area-weight", "--blend-stages",
                                               "--stage-iterations"},
                                              {"--no-split", "--no-holes", "--quiet", "--robust", "--no-robust", "--explicit"});
   return tools::run_tool("blended_fit", usage, argc, argv, options, [](const tools::Command_line& line) {
-    std::string input, json, mesh, hierarchy, model_file, strays, trace;
+    std::string input, json, mesh, hierarchy, model_file, strays, trace, reference_file;
     bool no_split = false, quiet = false, robust = true, explicit_integrator = false, max_parts_given = false;
     std::size_t iterations = 100, threads = 0, max_parts = BS::Evolution_settings().maximum_number_of_parts;
     std::size_t evolution_points = BS::Evolution_settings().maximum_evolution_points;
@@ -272,6 +278,7 @@ int main(int argc, char** argv)
       else if(a == "--robust") robust = true;
       else if(a == "--no-robust") robust = false;
       else if(a == "--strays") strays = o.value;
+      else if(a == "--reference") reference_file = o.value;
       else if(a == "--explicit") explicit_integrator = true;
       else if(a == "--max-parts")
       {
@@ -321,6 +328,13 @@ int main(int argc, char** argv)
     if(no_split)
       max_parts = 1;
 
+    // (the reference first: a mesh it cannot read ends the run before the points are read)
+    std::optional<CGAL::Surface_mesh<K::Point_3>> reference;
+    if(!reference_file.empty())
+    {
+      reference.emplace();
+      BS::read_triangle_mesh(reference_file, *reference);
+    }
     std::vector<K::Point_3> points;
     const BS::Read_report read = BS::read_points(input, points);
     if(!quiet)
@@ -340,6 +354,7 @@ int main(int argc, char** argv)
     reporter.trace = trace;
     const Result result = BS::fit_blended_shape(
       points,
+      BS::parameters::reference_mesh(reference ? &*reference : nullptr,
       BS::parameters::split_source(split_source,
       BS::parameters::blend_stages(blend_stages,
       BS::parameters::intermediate_stage_iterations(stage_iterations,
@@ -348,7 +363,7 @@ int main(int argc, char** argv)
         BS::parameters::maximum_number_of_parts(max_parts,
         BS::parameters::number_of_threads(threads,
         BS::parameters::robust_weighting(robust ? BS::Robust_weighting::Mixture : BS::Robust_weighting::None,
-        BS::parameters::integrator(explicit_integrator ? BS::Integrator::Explicit : BS::Integrator::Gauss_newton)))))))))
+        BS::parameters::integrator(explicit_integrator ? BS::Integrator::Explicit : BS::Integrator::Gauss_newton))))))))))
         .number_of_iterations(iterations)
         .random_seed(seed)
         .visitor(reporter));

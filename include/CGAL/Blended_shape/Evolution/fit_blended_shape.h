@@ -189,7 +189,11 @@ result does not depend on the unit of the points or on where they are.
     `maximum_number_of_parts` (1: one superquadric), `target_accuracy`,
     `maximum_split_tries`, `threshold_factor`, `analysis_resolution`,
     `maximum_evolution_points`, `split_source`, `blend_stages`;
-  - `point_map`, `geom_traits`, `try_all_axes`, `reference_mesh`: as for fit_superquadric();
+  - `point_map`, `geom_traits`, `try_all_axes`: as for fit_superquadric();
+  - `reference_mesh` (a pointer to a `CGAL::Surface_mesh<Point_3>`): the
+    result's metrics then hold the symmetric Chamfer distance of the model
+    to it, whatever its parts (symmetric_chamfer_distance() of a
+    Deformable_blended_model; `first_fit`'s metrics do not);
   - `visitor`: a fitting visitor (Default_fitting_visitor), whose
     `on_split()` and `on_undo()` are called too if it has them, and
     `on_remove()` if it has it (Default_evolution_visitor), with the event
@@ -214,6 +218,12 @@ auto fit_blended_shape(const PointRange& points, const NamedParameters& np = CGA
     CGAL::parameters::get_parameter(np, CGAL::internal_np::callback), std::function<bool(double)>());
   auto visitor = CGAL::parameters::choose_parameter(CGAL::parameters::get_parameter(np, CGAL::internal_np::visitor),
                                                     Default_evolution_visitor());
+  // The Chamfer distance to a reference mesh is measured once, of the
+  // result (at the end, untimed), not by the fits of one superquadric.
+  typedef CGAL::Surface_mesh<typename Geom_traits::Point_3> Mesh;
+  const Mesh* reference = CGAL::parameters::choose_parameter(
+    CGAL::parameters::get_parameter(np, internal_np::reference_mesh), static_cast<const Mesh*>(nullptr));
+  const auto single_np = parameters::reference_mesh(static_cast<const Mesh*>(nullptr), np);
 
   // Evolution fits by least squares (see Part_evolution), so it starts from
   // the least-squares fit of one superquadric: a robust fit of an object made
@@ -225,8 +235,8 @@ auto fit_blended_shape(const PointRange& points, const NamedParameters& np = CGA
   // (Its rest, the start of evolution, is not settled early: see Part_evolution.)
   Fit_result<Geom_traits> first_fit =
     evolve ? fit_superquadric(points, parameters::settling_tolerance(Part_evolution<Geom_traits>::settling_tolerance,
-                                                                parameters::robust_weighting(Robust_weighting::None, np)))
-           : fit_superquadric(points, np);
+                                                                parameters::robust_weighting(Robust_weighting::None, single_np)))
+           : fit_superquadric(points, single_np);
   Result result{make_blended_model(first_fit.model), {}, {}, first_fit.metrics, first_fit.stray_points, std::move(first_fit)};
   const Fit_result<Geom_traits>& first = result.first_fit;
   result.status.converged = first.metrics.converged;
@@ -336,7 +346,7 @@ auto fit_blended_shape(const PointRange& points, const NamedParameters& np = CGA
       // (robust), unless it takes most points for strays: then it fits one
       // part of an object made of several, and the least-squares fit,
       // which fits them all, stays.
-      const Fit_result<Geom_traits> single = fit_superquadric(points, np);
+      const Fit_result<Geom_traits> single = fit_superquadric(points, single_np);
       iterations += single.metrics.iterations;
       iterations_on_all_points += single.metrics.iterations_on_all_points;
       result.status.aborted = single.metrics.aborted;
@@ -352,6 +362,8 @@ auto fit_blended_shape(const PointRange& points, const NamedParameters& np = CGA
   result.metrics.iterations_on_all_points = iterations_on_all_points;
   result.metrics.aborted = result.status.aborted;
   result.metrics.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  if(reference != nullptr)
+    result.metrics.chamfer_distance = symmetric_chamfer_distance(result.model, *reference);
   return result;
 }
 
