@@ -743,10 +743,14 @@ private:
   // from the foot points of the stage before (the first stage's, which
   // try_split() makes, from the foot points of the base alone, which the
   // part at h = 1 does not hide): a search from the tessellation alone
-  // misses foot points next to the blend, whose faces straddle the cut, and
-  // the stage rests far from the points (on the box/cylinder scan the third
-  // stage rested at 1.8 times the energy), besides costing the first step 2
-  // to 4 times a later one. The stages before the last stop after
+  // misses foot points next to the blend, whose faces straddle the cut.
+  // When this came in (2026-11-29) a stage started that way rested far from
+  // the points (the box/cylinder scan's third stage at 1.8 times the
+  // energy); since the fits recheck their foot points at rest, the later
+  // stages started from the tessellation give that scan the same model to
+  // the 9th digit of its RMS, with one iteration more (2026-12-02): what
+  // the carried foot points still save is the first step's search, so no
+  // test can tell them apart by the result. The stages before the last stop after
   // Evolution_settings::intermediate_stage_iterations (the last fits to
   // rest). `m_fitter` is the first stage's fitter (stage_fitter());
   // `fit_settings` are those of the fits before the split. Returns the last
