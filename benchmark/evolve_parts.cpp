@@ -4,7 +4,9 @@
 // superquadric, then Part_evolution::run()), with the events (split kept or
 // undone, description lengths, RMS), the parts, the least-squares RMS over
 // the bounding-box diagonal before and after evolution, the result's (with
-// one part, the robust fit's, over its inliers), and the seconds.
+// one part, the robust fit's, over its inliers), the symmetric Chamfer
+// distance to the mesh scanned (over the points' diagonal; "-" for data
+// without a mesh), and the seconds.
 //
 //   evolve_parts [--threads N] [--evolution-points N] [--splits forces|creases|both] [--meshes-only]
 //
@@ -60,29 +62,41 @@ std::vector<K::Point_3> scan(const Mesh& m)
   return pts;
 }
 
-std::vector<K::Point_3> box_cylinder_scan()
+// A mesh and its scan: the scan is fitted, the mesh measures the result (Chamfer distance).
+struct Scanned_mesh
 {
-  Mesh m;
-  CGAL::copy_face_graph(BS::make_box_cylinder(), m);
-  return scan(m);
+  Mesh mesh;
+  std::vector<K::Point_3> points;
+};
+
+Scanned_mesh box_cylinder_scan()
+{
+  Scanned_mesh s;
+  CGAL::copy_face_graph(BS::make_box_cylinder(), s.mesh);
+  s.points = scan(s.mesh);
+  return s;
 }
 
-std::vector<K::Point_3> mesh_scan(const std::string& file)
+Scanned_mesh mesh_scan(const std::string& file)
 {
-  Mesh m;
-  BS::read_triangle_mesh(std::string(BLENDED_SHAPE_DATA_DIR) + "/meshes/" + file, m);
-  return scan(m);
+  Scanned_mesh s;
+  BS::read_triangle_mesh(std::string(BLENDED_SHAPE_DATA_DIR) + "/meshes/" + file, s.mesh);
+  s.points = scan(s.mesh);
+  return s;
 }
 
 std::size_t evolution_points = BS::Evolution_settings().maximum_evolution_points; // --evolution-points
 BS::Split_source split_source = BS::Evolution_settings().split_source;             // --splits
 
-void evolve(const std::string& name, const std::vector<K::Point_3>& points, std::size_t threads)
+// `reference`: the mesh scanned, if any (the Chamfer column).
+void evolve(const std::string& name, const std::vector<K::Point_3>& points, std::size_t threads,
+            const Mesh* reference = nullptr)
 {
   const auto r = BS::fit_blended_shape(
-    points, BS::parameters::split_source(
-              split_source, BS::parameters::maximum_evolution_points(evolution_points,
-                                                                     BS::parameters::number_of_threads(threads))));
+    points, BS::parameters::reference_mesh(
+              reference, BS::parameters::split_source(
+                           split_source, BS::parameters::maximum_evolution_points(
+                                           evolution_points, BS::parameters::number_of_threads(threads)))));
   // The least-squares RMS of evolution: before, that of its start; after,
   // that of the last split kept or part removed (the events measure both;
   // a removal is measured before the model is fitted to rest again).
@@ -97,6 +111,10 @@ void evolve(const std::string& name, const std::vector<K::Point_3>& points, std:
   std::cout << "| " << name << " | " << points.size() << " | " << std::fixed << std::setprecision(2)
             << 100. * before / diagonal << " | " << 100. * after / diagonal << " | " << r.number_of_parts() << " | "
             << 100. * r.metrics.rms_over_bbox_diagonal << " | ";
+  if(r.metrics.chamfer_distance)
+    std::cout << std::setprecision(4) << *r.metrics.chamfer_distance / diagonal << std::setprecision(2) << " | ";
+  else
+    std::cout << "- | ";
   for(const auto& e : r.events)
     std::cout << BS::evolution_event_name(e.kind) << " " << e.component << " (L " << std::setprecision(0)
               << e.description_length_before << " -> " << e.description_length_after << std::setprecision(4)
@@ -109,7 +127,8 @@ void evolve(const std::string& name, const std::vector<K::Point_3>& points, std:
 void evolve_synthetic_and_scans(std::size_t threads, const char* header)
 {
   std::cout << header;
-  evolve("box/cylinder scan", box_cylinder_scan(), threads);
+  const Scanned_mesh box_cylinder = box_cylinder_scan();
+  evolve("box/cylinder scan", box_cylinder.points, threads, &box_cylinder.mesh);
   std::vector<K::Point_3> mug;
   BS::read_points(std::string(BLENDED_SHAPE_DATA_DIR) + "/scans/pcl_mug_scan.xyz", mug);
   evolve("real mug scan (data/scans/pcl_mug_scan.xyz)", mug, threads);
@@ -154,18 +173,23 @@ int main(int argc, char** argv)
   }
   std::cout << blended_shape_benchmark::machine_description() << ", " << threads << " thread(s), splits from "
             << BS::split_source_name(split_source) << "\n\n";
-  const char* header = "| data | points | least-squares RMS/diag % before | after | parts | result RMS/diag % | events | "
-                       "iterations | seconds |\n"
-                       "|---|---:|---:|---:|---:|---:|---|---:|---:|\n";
+  const char* header = "| data | points | least-squares RMS/diag % before | after | parts | result RMS/diag % | "
+                       "Chamfer / diagonal | events | iterations | seconds |\n"
+                       "|---|---:|---:|---:|---:|---:|---:|---|---:|---:|\n";
   if(!meshes_only)
     evolve_synthetic_and_scans(threads, header);
   // The parts a person would name, for comparison with the parts column.
   std::cout << "\nGenus-0 meshes made of parts, scanned from the default camera (200x200):\n\n" << header;
-  evolve("cross (data/meshes/cgal_cross.off; 2 bars)", mesh_scan("cgal_cross.off"), threads);
-  evolve("tripod (cgal_tripod.off; 3 arms)", mesh_scan("cgal_tripod.off"), threads);
-  evolve("spool (cgal_spool.off; 2 discs, 1 axle)", mesh_scan("cgal_spool.off"), threads);
-  evolve("hammer (odedstein_hammer.obj; head, handle)", mesh_scan("odedstein_hammer.obj"), threads);
-  evolve("Spot the cow (odedstein_spot_low_resolution.obj; body, head, 4 legs: 6)",
-         mesh_scan("odedstein_spot_low_resolution.obj"), threads);
+  struct Named_mesh { const char* name; const char* file; };
+  for(const Named_mesh& m : {Named_mesh{"cross (data/meshes/cgal_cross.off; 2 bars)", "cgal_cross.off"},
+                             Named_mesh{"tripod (cgal_tripod.off; 3 arms)", "cgal_tripod.off"},
+                             Named_mesh{"spool (cgal_spool.off; 2 discs, 1 axle)", "cgal_spool.off"},
+                             Named_mesh{"hammer (odedstein_hammer.obj; head, handle)", "odedstein_hammer.obj"},
+                             Named_mesh{"Spot the cow (odedstein_spot_low_resolution.obj; body, head, 4 legs: 6)",
+                                        "odedstein_spot_low_resolution.obj"}})
+  {
+    const Scanned_mesh scanned = mesh_scan(m.file);
+    evolve(m.name, scanned.points, threads, &scanned.mesh);
+  }
   return EXIT_SUCCESS;
 }
