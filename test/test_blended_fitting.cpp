@@ -19,6 +19,7 @@
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Simple_cartesian.h>
+#include <CGAL/boost/graph/generators.h>
 
 #include <algorithm>
 #include <memory>
@@ -760,6 +761,12 @@ void test_chamfer_distance(const std::string& name, const Model<K>& m, const Reg
   const double moved_split = BS::symmetric_chamfer_distance(split, reference(shift));
   BS_CHECK(std::abs(moved_split - moved) < 0.03 * moved,
            name << ": a split changed the Chamfer distance from " << moved << " to " << moved_split);
+  // a reference it cannot measure to is refused, with what to do
+  BS_CHECK_REFUSED(std::invalid_argument, BS::symmetric_chamfer_distance(m, Mesh()), "has no faces");
+  Mesh quad;
+  CGAL::make_quad(typename K::Point_3(0., 0., 0.), typename K::Point_3(1., 0., 0.), typename K::Point_3(1., 1., 0.),
+                  typename K::Point_3(0., 1., 0.), quad);
+  BS_CHECK_REFUSED(std::invalid_argument, BS::symmetric_chamfer_distance(m, quad), "triangulate");
   std::cout << "  " << name << ": Chamfer distance to its own mesh " << self << ", moved by " << shift << " "
             << moved << ", split " << moved_split << std::endl;
 }

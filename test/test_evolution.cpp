@@ -675,6 +675,14 @@ void test_evolution_limits()
   bad = BS::Evolution_settings();
   bad.maximum_evolution_points = 10;
   refused(bad, "maximum_evolution_points must be 0 (evolution on all points) or at least 100");
+  // a reference mesh without faces, before any fitting (at once: no callback call)
+  const CGAL::Surface_mesh<typename K::Point_3> empty;
+  std::size_t calls = 0;
+  BS_CHECK_REFUSED(std::invalid_argument,
+                   BS::fit_blended_shape(points, BS::parameters::reference_mesh(&empty).callback(
+                                                   std::function<bool(double)>([&](double) { ++calls; return true; }))),
+                   "fit_blended_shape: the reference mesh has no faces");
+  BS_CHECK(calls == 0, "an empty reference mesh was refused after " << calls << " fitting iterations");
 }
 
 // A split model fitted to rest by least squares, from the robust fit of one

@@ -201,7 +201,8 @@ result does not depend on the unit of the points or on where they are.
   - `callback`: as for fit_superquadric(), passed to every fit; when it
     stops evolution, the model is the last one kept (see Part_evolution).
 
-\throws Input_error if the points are unusable; std::invalid_argument on invalid parameters.
+\throws Input_error if the points are unusable; std::invalid_argument on invalid parameters
+        (a reference mesh without faces or with faces that are not triangles too).
 */
 template <class PointRange, class NamedParameters = CGAL::parameters::Default_named_parameters>
 auto fit_blended_shape(const PointRange& points, const NamedParameters& np = CGAL::parameters::default_values())
@@ -223,6 +224,8 @@ auto fit_blended_shape(const PointRange& points, const NamedParameters& np = CGA
   typedef CGAL::Surface_mesh<typename Geom_traits::Point_3> Mesh;
   const Mesh* reference = CGAL::parameters::choose_parameter(
     CGAL::parameters::get_parameter(np, internal_np::reference_mesh), static_cast<const Mesh*>(nullptr));
+  if(reference != nullptr) // (refused before any fitting)
+    internal::check_reference_mesh(*reference, "fit_blended_shape");
   const auto single_np = parameters::reference_mesh(static_cast<const Mesh*>(nullptr), np);
 
   // Evolution fits by least squares (see Part_evolution), so it starts from

@@ -19,6 +19,8 @@
 #include <cmath>
 #include <optional>
 #include <random>
+#include <stdexcept>
+#include <string>
 #include <vector>
 
 namespace CGAL {
@@ -137,6 +139,18 @@ double mean_distance_to(const std::vector<typename Mesh::Point>& samples, const 
   return samples.empty() ? 0. : sum / double(samples.size());
 }
 
+// Refuses a reference mesh a Chamfer distance cannot be measured to: one
+// without faces, or with faces that are not triangles.
+template <class Mesh>
+void check_reference_mesh(const Mesh& reference, const std::string& who)
+{
+  if(num_faces(reference) == 0)
+    throw std::invalid_argument(who + ": the reference mesh has no faces; give a triangle mesh of the scanned object");
+  if(!CGAL::is_triangle_mesh(reference))
+    throw std::invalid_argument(who + ": the reference mesh has faces that are not triangles; triangulate it first "
+                                      "(CGAL::Polygon_mesh_processing::triangulate_faces())");
+}
+
 // The symmetric Chamfer distance from the model's samples and the model's
 // meshes: the mean of their mean distance to the reference and the mean
 // distance of `count` points on the reference (drawn with `seed + 1`) to the model.
@@ -145,6 +159,7 @@ double symmetric_chamfer_distance(const std::vector<typename Mesh::Point>& model
                                   const std::vector<const Mesh*>& model_meshes, const Mesh& reference,
                                   std::size_t count, unsigned int seed)
 {
+  check_reference_mesh(reference, "symmetric_chamfer_distance");
   const auto from_reference = sample_triangles(mesh_triangles(reference), count, seed + 1);
   return 0.5 * (mean_distance_to(model_samples, std::vector<const Mesh*>{&reference}) +
                 mean_distance_to(from_reference, model_meshes));
@@ -159,6 +174,7 @@ and a reference triangle mesh: the mean of the two mean closest-point
 distances, each over `samples` points spread uniformly by area on one surface
 (deterministic for `seed`). The chart meshes overlap near seams, which
 samples those bands twice; with the default margin the effect is small.
+\throws std::invalid_argument if `reference` has no face or a face that is not a triangle.
 */
 template <class GeomTraits>
 double symmetric_chamfer_distance(const std::vector<Chart_mesh<GeomTraits>>& model,
@@ -187,6 +203,7 @@ surface point once, whatever pieces overlap there, the part a gradual blend
 expresses through its base's disk included) to the reference, and of as
 many points on the reference to the model's pieces (Blended_shape_pieces at
 `resolution`, its retained faces as placed by the pose). Deterministic for `seed`.
+\throws std::invalid_argument if `reference` has no face or a face that is not a triangle.
 */
 template <class GeomTraits>
 double symmetric_chamfer_distance(const Deformable_blended_model<GeomTraits>& model,

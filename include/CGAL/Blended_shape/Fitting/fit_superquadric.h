@@ -142,7 +142,8 @@ done here: the model is always one superquadric.)
   symmetric Chamfer distance to it is reported).
 
 \throws Input_error if the points are unusable (check_points(), before any fitting: e.g. `Scale_out_of_range`
-        for coordinates whose squares overflow); std::invalid_argument on invalid parameters.
+        for coordinates whose squares overflow); std::invalid_argument on invalid parameters
+        (a reference mesh without faces or with faces that are not triangles too, before any fitting).
 */
 template <class PointRange, class NamedParameters = CGAL::parameters::Default_named_parameters>
 auto fit_superquadric(const PointRange& points, const NamedParameters& np = CGAL::parameters::default_values())
@@ -158,6 +159,8 @@ auto fit_superquadric(const PointRange& points, const NamedParameters& np = CGAL
   const std::function<bool(double)> callback =
     choose_parameter(get_parameter(np, CGAL::internal_np::callback), std::function<bool(double)>());
   const Mesh* reference = choose_parameter(get_parameter(np, internal_np::reference_mesh), static_cast<const Mesh*>(nullptr));
+  if(reference != nullptr) // (refused before any fitting)
+    internal::check_reference_mesh(*reference, "fit_superquadric");
   auto visitor = choose_parameter(get_parameter(np, CGAL::internal_np::visitor), Default_fitting_visitor());
 
   const bool all_axes = choose_parameter(get_parameter(np, internal_np::try_all_axes), true);
