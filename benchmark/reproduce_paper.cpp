@@ -266,15 +266,14 @@ int main(int argc, char** argv)
     Fit_figures f;
     std::string chamfer = "-";
     const double diag = BS::testing::bounding_box_diagonal(e.points);
+    const Mesh* reference = e.reference ? &*e.reference : nullptr; // (none: no Chamfer distance)
     if(evolve)
     {
       const auto evolution_np = BS::parameters::split_source(
         split_source, BS::parameters::blend_stages(
                         blend_stages, BS::parameters::intermediate_stage_iterations(
                                         stage_iterations, BS::parameters::maximum_evolution_points(evolution_points, np))));
-      const auto r = e.reference
-                       ? BS::fit_blended_shape(e.points, BS::parameters::reference_mesh(&*e.reference, evolution_np))
-                       : BS::fit_blended_shape(e.points, evolution_np);
+      const auto r = BS::fit_blended_shape(e.points, BS::parameters::reference_mesh(reference, evolution_np));
       f.metrics = r.metrics;
       f.parts = r.number_of_parts();
       f.holes = r.model.shape().holes().size();
@@ -282,8 +281,7 @@ int main(int argc, char** argv)
     }
     else
     {
-      const auto r = e.reference ? BS::fit_superquadric(e.points, BS::parameters::reference_mesh(&*e.reference, np))
-                                 : BS::fit_superquadric(e.points, np);
+      const auto r = BS::fit_superquadric(e.points, BS::parameters::reference_mesh(reference, np));
       f.metrics = r.metrics;
       f.iteration_over_sweep = r.metrics.seconds / double((std::max)(r.metrics.iterations, std::size_t(1))) /
                                closest_point_sweep_seconds(e.points, r.meshes);

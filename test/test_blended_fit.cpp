@@ -331,7 +331,8 @@ void test_parts_run(const Temp_dir& dir)
   // to the moved one 10 give or take 2, in the points' unit
   for(const double shift : {0., 10.})
   {
-    CGAL::Surface_mesh<K::Point_3> body = BS::make_unified_mesh(BS::Blended_shape<K>(BS::Superquadric_ellipsoid<K>(1., 0.8, 0.6, 1., 1.)));
+    CGAL::Surface_mesh<K::Point_3> body =
+      BS::make_unified_mesh(BS::Blended_shape<K>(BS::Superquadric_ellipsoid<K>(1., 0.8, 0.6, 1., 1.)));
     for(auto v : body.vertices())
       body.point(v) = body.point(v) + K::Vector_3(shift, 0., 0.);
     CGAL::IO::write_OFF(dir / (shift == 0. ? "body.off" : "moved_body.off"), body);

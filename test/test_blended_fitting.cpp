@@ -751,14 +751,15 @@ void test_chamfer_distance(const std::string& name, const Model<K>& m, const Reg
     return mesh;
   };
   const double shift = 0.05;
+  const Mesh moved_mesh = reference(shift);
   const double self = BS::symmetric_chamfer_distance(m, reference(0.));
-  const double moved = BS::symmetric_chamfer_distance(m, reference(shift));
+  const double moved = BS::symmetric_chamfer_distance(m, moved_mesh);
   BS_CHECK(self < 0.05 * shift && moved > 0.3 * shift && moved < shift,
            name << ": Chamfer distance to its own mesh " << self << ", to it moved by " << shift << ": " << moved);
   BS::Blended_shape<K> split_shape = m.shape();
   split_shape.split(0, 0, split_region, 0.05);
   const Model<K> split(split_shape, m.translation(), m.quaternion());
-  const double moved_split = BS::symmetric_chamfer_distance(split, reference(shift));
+  const double moved_split = BS::symmetric_chamfer_distance(split, moved_mesh);
   BS_CHECK(std::abs(moved_split - moved) < 0.03 * moved,
            name << ": a split changed the Chamfer distance from " << moved << " to " << moved_split);
   // a reference it cannot measure to is refused, with what to do
