@@ -12,7 +12,7 @@
 
 #include <CGAL/Blended_shape/Fitting/Deformable_model_fitter.h>
 #include <CGAL/Blended_shape/Fitting/Deformable_blended_model.h>
-#include <CGAL/Blended_shape/Fitting/Fit_metrics.h>
+#include <CGAL/Blended_shape/Fitting/Blended_model_metrics.h>
 #include <CGAL/Blended_shape/Blending/Blended_shape_mesh.h>
 #include <CGAL/Blended_shape/Fitting/sample_model.h>
 #include <blended_shape_testing/same_bits.h>

@@ -11,6 +11,7 @@
 #include <CGAL/Blended_shape/Fitting/Fitting_settings.h>
 #include <CGAL/Blended_shape/Fitting/Deformable_model_fitter.h>
 #include <CGAL/Blended_shape/Fitting/Fit_metrics.h>
+#include <CGAL/Blended_shape/Fitting/Blended_model_metrics.h>
 #include <CGAL/Blended_shape/Fitting/sample_model.h>
 #include <CGAL/Blended_shape/Fitting/Superquadric_multistart_search.h>
 #include <CGAL/Blended_shape/Fitting/fit_superquadric.h>

@@ -4,6 +4,7 @@
 
 #include <CGAL/Blended_shape/Evolution/Evolution_settings.h>
 #include <CGAL/Blended_shape/Evolution/Part_evolution.h>
+#include <CGAL/Blended_shape/Fitting/Blended_model_metrics.h>
 #include <CGAL/Blended_shape/Fitting/fit_superquadric.h>
 #include <CGAL/Blended_shape/Fitting/internal/Point_normalization.h>
 #include <CGAL/Blended_shape/internal/isolated_points.h>

@@ -2,11 +2,8 @@
 #ifndef CGAL_BLENDED_SHAPE_FITTING_FIT_METRICS_H
 #define CGAL_BLENDED_SHAPE_FITTING_FIT_METRICS_H
 
-#include <CGAL/Blended_shape/Blending/Blended_shape_mesh.h>
 #include <CGAL/Blended_shape/Primitives/Chart_mesh.h>
-#include <CGAL/Blended_shape/Fitting/Deformable_blended_model.h>
 #include <CGAL/Blended_shape/Fitting/initialize_from_moments.h>
-#include <CGAL/Blended_shape/Fitting/sample_model.h>
 
 #include <CGAL/AABB_face_graph_triangle_primitive.h>
 #include <CGAL/AABB_traits.h>
@@ -192,33 +189,6 @@ double symmetric_chamfer_distance(const std::vector<Chart_mesh<GeomTraits>>& mod
   }
   const auto from_model = internal::sample_triangles(model_triangles, samples, seed);
   return internal::symmetric_chamfer_distance(from_model, model_meshes, reference, samples, seed);
-}
-
-/*!
-\ingroup PkgBlendedShapeMetrics
-Symmetric Chamfer distance between a blended model and a reference triangle
-mesh, as above: the mean distance of `samples` points spread uniformly by
-area on the model's surface (sample_model_surface() at `resolution`: every
-surface point once, whatever pieces overlap there, the part a gradual blend
-expresses through its base's disk included) to the reference, and of as
-many points on the reference to the model's pieces (Blended_shape_pieces at
-`resolution`, its retained faces as placed by the pose). Deterministic for `seed`.
-\throws std::invalid_argument if `reference` has no face or a face that is not a triangle.
-*/
-template <class GeomTraits>
-double symmetric_chamfer_distance(const Deformable_blended_model<GeomTraits>& model,
-                                  const CGAL::Surface_mesh<typename GeomTraits::Point_3>& reference,
-                                  std::size_t samples = 20000, unsigned int seed = 0, int resolution = 24)
-{
-  typedef typename GeomTraits::Point_3 Point_3;
-  typedef CGAL::Surface_mesh<Point_3> Mesh;
-  std::vector<Point_3> from_model;
-  for(const auto& s : sample_model_surface(model, samples, seed, resolution))
-    from_model.push_back(s.point);
-  const Blended_shape_pieces<GeomTraits> pieces(model.shape(), resolution,
-                                                [&](const Point_3& p) { return model.placed(p); });
-  const Mesh surface = pieces.merged_mesh();
-  return internal::symmetric_chamfer_distance(from_model, std::vector<const Mesh*>{&surface}, reference, samples, seed);
 }
 
 } // namespace Blended_shapes
