@@ -22,8 +22,9 @@ namespace Blended_shapes {
 /*!
 \ingroup PkgBlendedShapeMetrics
 Symmetric Chamfer distance between a blended model and a reference triangle
-mesh, as for chart meshes (Fit_metrics.h): the mean distance of `samples` points spread uniformly by
-area on the model's surface (sample_model_surface() at `resolution`: every
+mesh, as for chart meshes (Fit_metrics.h): the mean distance of `samples`
+points spread uniformly by area on the model's surface
+(sample_model_surface() at `resolution`: every
 surface point once, whatever pieces overlap there, the part a gradual blend
 expresses through its base's disk included) to the reference, and of as
 many points on the reference to the model's pieces (Blended_shape_pieces at
