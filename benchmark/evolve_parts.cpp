@@ -8,7 +8,7 @@
 // distance to the mesh scanned (over the points' diagonal; "-" for data
 // without a mesh), and the seconds.
 //
-//   evolve_parts [--threads N] [--evolution-points N] [--splits forces|creases|both] [--meshes-only]
+//   evolve_parts [--threads N] [--evolution-points N] [--splits forces|creases|both|branches] [--meshes-only]
 //
 // --evolution-points N: Evolution_settings::maximum_evolution_points (default
 // 4000; 0: evolution on all points). --splits: Evolution_settings::split_source
@@ -167,7 +167,7 @@ int main(int argc, char** argv)
     }
     else
     {
-      std::cerr << "usage: evolve_parts [--threads N] [--evolution-points N] [--splits forces|creases|both] [--meshes-only]\n";
+      std::cerr << "usage: evolve_parts [--threads N] [--evolution-points N] [--splits forces|creases|both|branches] [--meshes-only]\n";
       return 2;
     }
   }

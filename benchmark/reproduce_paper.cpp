@@ -7,7 +7,7 @@
 // evolution) and reported like Figure 18, with the paper's numbers beside
 // ours. Prints Markdown; --csv FILE also writes CSV.
 //
-//   reproduce_paper [--evolve] [--splits forces|creases|both] [--evolution-points N] [--robust] [--threads N]
+//   reproduce_paper [--evolve] [--splits forces|creases|both|branches] [--evolution-points N] [--robust] [--threads N]
 //                   [--seed N] [--area-weight W] [--blend-stages N] [--stage-iterations N]
 //                   [--csv FILE] [--markdown FILE]
 //
@@ -205,7 +205,7 @@ int main(int argc, char** argv)
     }
     else
     {
-      std::cerr << "usage: reproduce_paper [--evolve] [--splits forces|creases|both] [--evolution-points N] [--robust] "
+      std::cerr << "usage: reproduce_paper [--evolve] [--splits forces|creases|both|branches] [--evolution-points N] [--robust] "
                    "[--threads N] [--seed N] [--area-weight W] [--blend-stages N] [--stage-iterations N] [--csv FILE] "
                    "[--markdown FILE]\n";
       return 2;

@@ -28,11 +28,17 @@ enum class Split_source
   /// in gradually (sec. 4.1), `h` lowered in `blend_stages` stages.
   Crease_segments,
   /// Crease segments first, then force regions.
-  Both
+  Both,
+  /// The branches of the data (branch_segments(): the limbs and head of a
+  /// body, the arms of a cross), joined one at a time from the central one:
+  /// the fits see only the branches joined so far, and each new branch is
+  /// fitted with the model first, then offered as a part blended in
+  /// gradually as for Crease_segments (Part_evolution, "Branches").
+  Branch_segments
 };
 
 /// \ingroup PkgBlendedShapeEvolution
-/// The name of a split source, for output: "forces", "creases", "both".
+/// The name of a split source, for output: "forces", "creases", "both", "branches".
 inline const char* split_source_name(Split_source s)
 {
   switch(s)
@@ -40,6 +46,7 @@ inline const char* split_source_name(Split_source s)
   case Split_source::Force_regions: return "forces";
   case Split_source::Crease_segments: return "creases";
   case Split_source::Both: return "both";
+  case Split_source::Branch_segments: return "branches";
   }
   return "unknown";
 }
@@ -48,7 +55,8 @@ inline const char* split_source_name(Split_source s)
 /// The split source of a name split_source_name() gives, or nothing.
 inline std::optional<Split_source> split_source_from_name(const std::string& name)
 {
-  for(Split_source s : {Split_source::Force_regions, Split_source::Crease_segments, Split_source::Both})
+  for(Split_source s :
+      {Split_source::Force_regions, Split_source::Crease_segments, Split_source::Both, Split_source::Branch_segments})
     if(name == split_source_name(s))
       return s;
   return std::nullopt;
@@ -135,7 +143,7 @@ inline void check_evolution_settings(const Evolution_settings& s, const std::str
   if(s.intermediate_stage_iterations < 1)
     throw std::invalid_argument(who + ": intermediate_stage_iterations must be at least 1");
   if(s.split_source != Split_source::Force_regions && s.split_source != Split_source::Crease_segments &&
-     s.split_source != Split_source::Both)
+     s.split_source != Split_source::Both && s.split_source != Split_source::Branch_segments)
     throw std::invalid_argument(who + ": split_source is not a Split_source");
   if(s.maximum_evolution_points != 0 && s.maximum_evolution_points < minimum_evolution_points)
     throw std::invalid_argument(who + ": maximum_evolution_points must be 0 (evolution on all points) or at least " +

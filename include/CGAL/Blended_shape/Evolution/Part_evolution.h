@@ -4,6 +4,7 @@
 
 #include <CGAL/Blended_shape/Blending/Blended_shape_mesh.h>
 #include <CGAL/Blended_shape/Blending/Quotient_domain.h>
+#include <CGAL/Blended_shape/Evolution/Branch_segments.h>
 #include <CGAL/Blended_shape/Evolution/Crease_segments.h>
 #include <CGAL/Blended_shape/Evolution/Evolution_settings.h>
 #include <CGAL/Blended_shape/Evolution/Force_regions.h>
@@ -20,10 +21,12 @@
 
 #include <Eigen/Core>
 
+#include <algorithm>
 #include <cmath>
 #include <cstddef>
 #include <functional>
 #include <memory>
+#include <numeric>
 #include <optional>
 #include <stdexcept>
 #include <string>
@@ -230,6 +233,26 @@ points of a scanned surface are not). A robust fit's weights would not do:
 they take the points of a part the model does not reach yet for strays,
 which is exactly what must pull the model into a split.
 
+Branches (Split_source::Branch_segments): a body's limbs meet it without a
+concave crease, and a model fitted to all the points is pulled by every
+limb it does not have yet (a body fitted with its arms is a plate). With
+this source the fits see the points of the branches joined so far
+(branch_segments(), joined_points()): the central branch (the largest
+branch without a parent; branches of fewer than `minimum_segment_share`
+of the points belong to their nearest larger ancestor, the other
+connected pieces grow from the central branch) when the evolution is
+made, fitted with a superquadric of its own at the start of run()
+(fit_superquadric(), least squares; the model given serves the steps
+driven by hand). propose_splits() proposes the largest branch not joined
+whose parent is; try_split() first joins it (the model fitted to rest on
+the points with it), then tries its split as for a crease segment and
+keeps it if it pays: the split is judged against the model without a part
+fitted to the same points, and an undone split leaves the branch joined
+without a part. run() tries each branch once, in that order; the branches
+left at the part limit or the target accuracy are joined without parts, so
+that the model ends fitted to all the points. The description length then
+counts the share of the points the fits see (described_points()).
+
 Rest states: the fits of evolution (and the fit of a crease segment's
 part) wait at a rest state for the damping to grow until the step is
 negligible (Fitting_settings::settling_tolerance 0), whatever the settings
@@ -283,21 +306,34 @@ public:
       all.emplace_back(CGAL::to_double(p.x()), CGAL::to_double(p.y()), CGAL::to_double(p.z()));
     }
     const std::vector<bool> isolated = internal::isolated_points(all);
+    std::vector<Eigen::Vector3d> kept;
     for(std::size_t i = 0; i < all.size(); ++i)
       if(isolated[i])
         m_isolated.push_back(i);
       else
+      {
         m_kept.push_back(Point_3(all[i].x(), all[i].y(), all[i].z()));
+        kept.push_back(all[i]);
+      }
+    if(m_settings.split_source == Split_source::Branch_segments)
+      join_central_branch(kept);
+    else
+    {
+      m_joined.resize(m_kept.size());
+      std::iota(m_joined.begin(), m_joined.end(), std::size_t(0));
+      m_points = m_kept;
+    }
     Fitting_settings least_squares = fitting;
     least_squares.robust_weighting = Robust_weighting::None;
     least_squares.subset_size = 0;
     least_squares.settling_tolerance = settling_tolerance;
-    m_fitter = std::make_unique<Fitter>(m_kept, initial, least_squares);
+    m_fitter = std::make_unique<Fitter>(m_points, initial, least_squares);
   }
 
   /// The current model: the last one kept.
   const Model& model() const { return m_fitter->model(); }
-  /// The fitter of the current model (its points: those not isolated).
+  /// The fitter of the current model (its points: those not isolated; with
+  /// Split_source::Branch_segments, those of the branches joined so far).
   Fitter& fitter()
   {
     ++m_version; // the caller may move the model
@@ -314,7 +350,19 @@ public:
 
   /// The number of points `n` the description length counts (see the class
   /// description): the points fitted, unless set_described_points() set it.
-  std::size_t described_points() const { return m_described_points > 0 ? m_described_points : m_kept.size(); }
+  /// With Split_source::Branch_segments, the share of them in the branches
+  /// joined so far (the points the split test compares the models on).
+  std::size_t described_points() const
+  {
+    const std::size_t n = m_described_points > 0 ? m_described_points : m_kept.size();
+    if(m_points.size() == m_kept.size())
+      return n;
+    return std::size_t(std::llround(double(n) * double(m_points.size()) / double(m_kept.size())));
+  }
+  /// The indices (in the order of the points not isolated, increasing) of
+  /// the points the fits see now: all of them, except with
+  /// Split_source::Branch_segments, where they are the branches joined so far.
+  const std::vector<std::size_t>& joined_points() const { return m_joined; }
   /// Counts `n` points in the description length instead of the points
   /// fitted (0: those), as when the points given are an even sample of `n`
   /// (fit_blended_shape() with Evolution_settings::maximum_evolution_points):
@@ -389,7 +437,7 @@ public:
       {
         continue; // not a split part, or others are built on it
       }
-      auto merged = std::make_unique<Fitter>(m_kept, Model(without, model().translation(), model().quaternion()),
+      auto merged = std::make_unique<Fitter>(m_points, Model(without, model().translation(), model().quaternion()),
                                              m_fitter->settings());
       Evolution_event e;
       e.kind = Evolution_event_kind::Remove;
@@ -439,6 +487,12 @@ public:
   std::vector<Split_proposal> propose_splits() const
   {
     std::vector<Split_proposal> proposals;
+    if(m_settings.split_source == Split_source::Branch_segments)
+    {
+      if(const std::optional<std::size_t> s = next_branch())
+        proposals.push_back(branch_proposal(*s));
+      return proposals;
+    }
     if(m_settings.split_source != Split_source::Force_regions)
       proposals = propose_segment_splits();
     if(m_settings.split_source == Split_source::Crease_segments)
@@ -472,7 +526,11 @@ public:
   /*!
   Splits the current model (at rest) as `proposal` says, fits it to rest and
   keeps it if its description length falls; otherwise (or if the split is
-  refused, or `callback` stops the fit) restores the model exactly. A
+  refused, or `callback` stops the fit) restores the model exactly. With
+  Split_source::Branch_segments, a proposal of a branch not yet joined joins
+  it first (the current model fitted to rest on the points with it; stopped
+  by `callback`, the model and its points as before and `false`), and the
+  model restored is that one. A
   proposal from a crease segment (`proposal.segment`) first gives the model
   a base that fits the points outside the segment: when the model is one
   superquadric, a new one fitted to those points (fit_superquadric(), least
@@ -497,6 +555,15 @@ public:
   bool try_split(const Split_proposal& proposal, Visitor&& visitor = Visitor(),
                  const std::function<bool(double)>& callback = std::function<bool(double)>())
   {
+    // A branch not yet joined is joined first: the split is then judged
+    // against the model without it fitted to the same points.
+    if(m_settings.split_source == Split_source::Branch_segments && proposal.segment < m_branch_joined.size() &&
+       !m_branch_joined[proposal.segment])
+    {
+      internal::notify_phase(visitor, Evolution_phase::Fit_to_rest, model().shape().number_of_components());
+      if(join_branches({proposal.segment}, visitor, callback).aborted)
+        return false;
+    }
     const bool converged_before = m_rest_converged;
     Evolution_event e;
     e.iteration = m_iterations;
@@ -529,7 +596,7 @@ public:
         next->start_from_chart_points(base_foot_points);
       }
       else
-        next = std::make_unique<Fitter>(m_kept, *split, m_fitter->settings());
+        next = std::make_unique<Fitter>(m_points, *split, m_fitter->settings());
       before = std::exchange(m_fitter, std::move(next));
     }
     catch(const std::invalid_argument&)
@@ -575,8 +642,12 @@ public:
   {
     Evolution_status status;
     const std::size_t start = m_iterations;
+    const bool branches = m_settings.split_source == Split_source::Branch_segments;
     internal::notify_phase(visitor, Evolution_phase::Fit_to_rest, model().shape().number_of_components());
-    fit_to_rest(visitor, callback);
+    if(branches && m_events.empty())
+      start_from_central_branch_fit(callback);
+    if(!m_last_fit.aborted)
+      fit_to_rest(visitor, callback);
     while(!m_last_fit.aborted)
     {
       if(m_settings.target_accuracy > 0. &&
@@ -593,11 +664,19 @@ public:
       bool kept = false;
       const std::size_t parts_before = model().shape().number_of_components();
       internal::notify_phase(visitor, Evolution_phase::Split_proposals, parts_before);
-      for(const Split_proposal& p : propose_splits())
+      const std::vector<Split_proposal> proposals = propose_splits();
+      for(const Split_proposal& p : proposals)
         if((kept = try_split(p, visitor, callback)) || m_last_fit.aborted)
           break;
-      if(!kept)
+      if(m_last_fit.aborted)
         break;
+      if(!kept)
+      {
+        // A branch whose split did not pay is joined all the same: the next one.
+        if(branches && !proposals.empty())
+          continue;
+        break;
+      }
       if(remove_unpaid_parts(visitor) > 0)
       {
         internal::notify_phase(visitor, Evolution_phase::Fit_to_rest, model().shape().number_of_components());
@@ -607,6 +686,17 @@ public:
         if(model().shape().number_of_components() <= parts_before)
           break;
       }
+    }
+    // The branches left (at the part limit or the target accuracy) are joined
+    // without parts, so that the model ends fitted to all the points.
+    if(branches && !m_last_fit.aborted && m_points.size() < m_kept.size())
+    {
+      std::vector<std::size_t> rest;
+      for(std::size_t s = 0; s < m_branch_joined.size(); ++s)
+        if(!m_branch_joined[s])
+          rest.push_back(s);
+      internal::notify_phase(visitor, Evolution_phase::Fit_to_rest, model().shape().number_of_components());
+      join_branches(rest, visitor, callback);
     }
     status.iterations = m_iterations - start;
     status.aborted = m_last_fit.aborted;
@@ -649,31 +739,22 @@ private:
     const std::vector<Chart_point> foot = m_fitter->foot_points();
     std::vector<Point_3> members, others;
     std::vector<Chart_point> others_foot; // where the base's fit starts its projections
-    for(std::size_t i = 0, next = 0; i < m_kept.size(); ++i)
+    for(std::size_t i = 0, next = 0; i < m_points.size(); ++i)
       if(next < member_indices.size() && member_indices[next] == i)
       {
-        members.push_back(m_kept[i]);
+        members.push_back(m_points[i]);
         ++next;
       }
       else
       {
-        others.push_back(m_kept[i]);
+        others.push_back(m_points[i]);
         others_foot.push_back(foot[i]);
       }
     const std::size_t threads = m_fitter->settings().number_of_threads;
     std::optional<Model> base;
     if(m_fitter->model().shape().number_of_components() == 1)
     {
-      const auto fitted = fit_superquadric(
-        others, parameters::area_weight(
-                  m_fitter->settings().area_weight,
-                  parameters::settling_tolerance(
-                    settling_tolerance, parameters::robust_weighting(
-                                          Robust_weighting::None, parameters::number_of_threads(threads).callback(callback)))));
-      m_last_fit = Fitting_status();
-      m_last_fit.iterations = fitted.metrics.iterations;
-      m_last_fit.converged = fitted.metrics.converged;
-      m_last_fit.aborted = fitted.metrics.aborted;
+      const auto fitted = least_squares_superquadric(others, callback);
       if(!m_last_fit.aborted)
       {
         const Point_3 c = CGAL::centroid(members.begin(), members.end());
@@ -693,7 +774,7 @@ private:
     m_iterations += m_last_fit.iterations;
     if(!base)
       return std::nullopt;
-    Fitter on_all_points(m_kept, *base, m_fitter->settings());
+    Fitter on_all_points(m_points, *base, m_fitter->settings());
     base_foot_points = on_all_points.foot_points();
     std::optional<Split_proposal> where = propose_segment_split(*base, base_foot_points, member_indices);
     if(where)
@@ -712,13 +793,15 @@ private:
     return add_gradual_part(*base, *where, lengthened);
   }
 
-  // The indices (increasing) of the points in crease segment `s`.
+  // The indices (increasing) among the points fitted (m_points) of the
+  // points in segment `s`, which must be joined (always, but with
+  // Split_source::Branch_segments).
   std::vector<std::size_t> segment_members(std::size_t s) const
   {
     std::vector<std::size_t> members;
-    for(std::size_t i = 0; i < m_segments->label.size(); ++i)
-      if(m_segments->label[i] == s)
-        members.push_back(i);
+    for(std::size_t j = 0; j < m_joined.size(); ++j)
+      if(m_segments->label[m_joined[j]] == s)
+        members.push_back(j);
     return members;
   }
 
@@ -791,7 +874,7 @@ private:
     Fitting_settings settings = fit_settings;
     if(k < stages)
       settings.maximum_iterations = (std::min)(settings.maximum_iterations, m_settings.intermediate_stage_iterations);
-    return std::make_unique<Fitter>(m_kept, Model(shape, from.translation(), from.quaternion()), settings);
+    return std::make_unique<Fitter>(m_points, Model(shape, from.translation(), from.quaternion()), settings);
   }
 
   // The proposals from crease segments (see propose_splits()); the segments
@@ -833,10 +916,179 @@ private:
     return proposals;
   }
 
+  // A superquadric fitted to `points` by least squares (fit_superquadric(),
+  // the fits' area weight and threads, evolution's rests); m_last_fit says
+  // how the fit ended.
+  auto least_squares_superquadric(const std::vector<Point_3>& points, const std::function<bool(double)>& callback)
+  {
+    const auto fitted = fit_superquadric(
+      points, parameters::area_weight(
+                m_fitter->settings().area_weight,
+                parameters::settling_tolerance(
+                  settling_tolerance,
+                  parameters::robust_weighting(Robust_weighting::None,
+                                               parameters::number_of_threads(m_fitter->settings().number_of_threads)
+                                                 .callback(callback)))));
+    m_last_fit = Fitting_status();
+    m_last_fit.iterations = fitted.metrics.iterations;
+    m_last_fit.converged = fitted.metrics.converged;
+    m_last_fit.aborted = fitted.metrics.aborted;
+    return fitted;
+  }
+
+  // Split_source::Branch_segments: the branches of the points not isolated
+  // (`kept`, their coordinates; branch_segments()) as m_segments, where a
+  // branch of fewer than minimum_segment_share of them belongs to its
+  // nearest ancestor that has more (or to the central branch), and a
+  // branch of another connected piece grows from the central branch; the
+  // central branch (the largest branch without a parent) is joined.
+  void join_central_branch(const std::vector<Eigen::Vector3d>& kept)
+  {
+    Crease_segments b = branch_segments(kept);
+    const std::size_t none = std::size_t(-1), count = b.size.size();
+    std::size_t centre = none;
+    for(std::size_t s = 0; s < count && centre == none; ++s)
+      if(b.parent[s] == none)
+        centre = s;
+    if(centre == none) // (no points: check_points() refuses that before)
+      throw std::invalid_argument("Part_evolution: no branch to start from");
+    const auto large = [&](std::size_t s) {
+      return double(b.size[s]) >= minimum_segment_share * double(kept.size());
+    };
+    // The branch whose points those of `s` join: `s` itself if large.
+    std::vector<std::size_t> owner(count);
+    for(std::size_t s = 0; s < count; ++s)
+    {
+      std::size_t t = s;
+      while(t != centre && !large(t))
+        t = b.parent[t] == none ? centre : b.parent[t];
+      owner[s] = t;
+    }
+    std::vector<std::size_t> parent(count, none), size(count, 0);
+    for(std::size_t s = 0; s < count; ++s)
+      if(owner[s] == s && s != centre)
+        parent[s] = b.parent[s] == none ? centre : owner[b.parent[s]];
+    for(std::size_t& l : b.label)
+    {
+      l = owner[l];
+      ++size[l];
+    }
+    b.parent = parent;
+    b.size = size;
+    m_segments = b;
+    m_branch_joined.assign(count, false);
+    m_branch_joined[centre] = true;
+    update_joined_points();
+  }
+
+  // m_joined and m_points from m_branch_joined.
+  void update_joined_points()
+  {
+    m_joined.clear();
+    m_points.clear();
+    for(std::size_t i = 0; i < m_kept.size(); ++i)
+      if(m_branch_joined[m_segments->label[i]])
+      {
+        m_joined.push_back(i);
+        m_points.push_back(m_kept[i]);
+      }
+  }
+
+  // The largest branch not joined whose parent is, if any.
+  std::optional<std::size_t> next_branch() const
+  {
+    std::optional<std::size_t> next;
+    for(std::size_t s = 0; s < m_branch_joined.size(); ++s)
+      if(!m_branch_joined[s] && m_segments->size[s] > 0 && m_branch_joined[m_segments->parent[s]] &&
+         (!next || m_segments->size[s] > m_segments->size[*next]))
+        next = s;
+    return next;
+  }
+
+  // The split proposal of branch `s` (not joined): propose_segment_split()
+  // on the current model with the closest points of the joined points and
+  // of those of `s` (found afresh), or where that gives none (the branch
+  // is most of its component's points) a proposal naming the branch only
+  // (try_split() joins it, then finds no region: no split).
+  Split_proposal branch_proposal(std::size_t s) const
+  {
+    std::vector<Point_3> points;
+    std::vector<std::size_t> members;
+    for(std::size_t i = 0; i < m_kept.size(); ++i)
+      if(m_branch_joined[m_segments->label[i]] || m_segments->label[i] == s)
+      {
+        if(m_segments->label[i] == s)
+          members.push_back(points.size());
+        points.push_back(m_kept[i]);
+      }
+    Fitter with_branch(points, model(), m_fitter->settings());
+    Split_proposal p;
+    if(std::optional<Split_proposal> q = propose_segment_split(model(), with_branch.foot_points(), members))
+      if(std::optional<Split_proposal> fitted = shrink_to_fit(model().shape(), *q))
+        p = *fitted;
+    p.boundary = Split_proposal::none;
+    p.segment = s;
+    return p;
+  }
+
+  // Split_source::Branch_segments, at the start of run(): the model becomes
+  // a superquadric fitted to the central branch (fit_superquadric(), least
+  // squares), not the model the evolution was made with, which fitted all
+  // the points: a body fitted with its limbs is a plate that no part repairs.
+  void start_from_central_branch_fit(const std::function<bool(double)>& callback)
+  {
+    const auto fitted = least_squares_superquadric(m_points, callback);
+    m_iterations += fitted.metrics.iterations;
+    if(m_last_fit.aborted)
+      return;
+    m_fitter = std::make_unique<Fitter>(m_points, make_blended_model(fitted.model), m_fitter->settings());
+    ++m_version;
+  }
+
+  // Joins the branches `segments` to the points fitted and fits the
+  // current model to rest on them, the projections of the points joined
+  // before starting from their foot points. If `callback` stops the fit,
+  // the model and its points are restored.
+  template <class Visitor>
+  Fitting_status join_branches(const std::vector<std::size_t>& segments, Visitor&& visitor,
+                               const std::function<bool(double)>& callback)
+  {
+    const std::vector<Chart_point> foot = m_fitter->foot_points();
+    const std::vector<std::size_t> joined_before = m_joined;
+    const std::vector<Point_3> points_before = m_points;
+    const std::vector<bool> branches_before = m_branch_joined;
+    const std::size_t version_before = m_version;
+    const Measure measured_before = m_measured;
+    const bool converged_before = m_rest_converged;
+    for(std::size_t s : segments)
+      m_branch_joined[s] = true;
+    update_joined_points();
+    auto next = std::make_unique<Fitter>(m_points, m_fitter->model(), m_fitter->settings());
+    std::vector<Chart_point> starts = next->foot_points();
+    for(std::size_t j = 0, k = 0; j < m_joined.size() && k < joined_before.size(); ++j)
+      if(m_joined[j] == joined_before[k])
+        starts[j] = foot[k++];
+    next->start_from_chart_points(starts);
+    std::unique_ptr<Fitter> before = std::exchange(m_fitter, std::move(next));
+    ++m_version;
+    const Fitting_status status = fit_to_rest(visitor, callback);
+    if(status.aborted)
+    {
+      m_fitter = std::move(before);
+      m_joined = joined_before;
+      m_points = points_before;
+      m_branch_joined = branches_before;
+      m_version = version_before;
+      m_measured = measured_before;
+      m_rest_converged = converged_before;
+    }
+    return status;
+  }
+
   // See mean_squared_distance().
   double mean_squared_distance_of(Fitter& fitter) const
   {
-    Fitter fresh(m_kept, fitter.model(), fitter.settings());
+    Fitter fresh(m_points, fitter.model(), fitter.settings());
     return (std::min)(fitter.mean_squared_distance(true), fresh.mean_squared_distance(true));
   }
 
@@ -859,7 +1111,10 @@ private:
 
   Evolution_settings m_settings;
   std::size_t m_described_points = 0;   // see set_described_points(); 0: the points fitted
-  std::vector<Point_3> m_kept;          // the points fitted (not isolated)
+  std::vector<Point_3> m_kept;          // the points not isolated
+  std::vector<std::size_t> m_joined;    // those fitted now (indices in m_kept, increasing): see joined_points()
+  std::vector<Point_3> m_points;        // the points fitted now: m_kept[m_joined[j]]
+  std::vector<bool> m_branch_joined;    // Split_source::Branch_segments: whether each segment is joined
   std::vector<std::size_t> m_isolated;  // indices of the others
   std::unique_ptr<Fitter> m_fitter;
   std::vector<Evolution_event> m_events;

@@ -280,8 +280,10 @@ auto fit_blended_shape(const PointRange& points, const NamedParameters& np = CGA
     internal::Input_frame_visitor<decltype(visitor), Geom_traits> input_visitor{visitor, normalization, n};
     result.status = evolution.run(input_visitor, callback);
     iterations += result.status.iterations;
-    if(!sampled)
-      iterations_on_all_points += result.status.iterations; // evolution fits all its points at every step
+    // Evolution fits all its points at every step, but with the branches
+    // (which it fits a few at a time).
+    if(!sampled && evolution_settings.split_source != Split_source::Branch_segments)
+      iterations_on_all_points += result.status.iterations;
     for(const Evolution_event& e : evolution.events())
       result.events.push_back(internal::event_in_input_unit(e, normalization.scale(), n));
     if(evolution.model().shape().number_of_components() > 1)
