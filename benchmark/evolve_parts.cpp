@@ -98,15 +98,15 @@ void evolve(const std::string& name, const std::vector<K::Point_3>& points, std:
                            split_source, BS::parameters::maximum_evolution_points(
                                            evolution_points, BS::parameters::number_of_threads(threads)))));
   // The least-squares RMS of evolution: before, that of its start; after,
-  // that of the last split kept or part removed (the events measure both;
-  // a removal is measured before the model is fitted to rest again).
+  // that of the last split kept, part removed or revert (the events measure
+  // both; a removal is measured before the model is fitted to rest again).
   const CGAL::Bbox_3 box = CGAL::bbox_3(points.begin(), points.end());
   const double diagonal = std::sqrt(CGAL::square(box.xmax() - box.xmin()) + CGAL::square(box.ymax() - box.ymin()) +
                                     CGAL::square(box.zmax() - box.zmin()));
   const double before = r.events.empty() ? r.first_fit.metrics.rms : r.events.front().rms_before;
   double after = before;
   for(const auto& e : r.events)
-    if(e.kind != BS::Evolution_event_kind::Undo) // a split kept or a part removed
+    if(e.kind != BS::Evolution_event_kind::Undo) // a split kept, a part removed or a revert
       after = e.rms_after;
   std::cout << "| " << name << " | " << points.size() << " | " << std::fixed << std::setprecision(2)
             << 100. * before / diagonal << " | " << 100. * after / diagonal << " | " << r.number_of_parts() << " | "

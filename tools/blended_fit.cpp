@@ -59,10 +59,10 @@ const char* usage =
   "                       0.3 keeps the surface from growing where no point is, see the\n"
   "                       manual, Compact Models)\n"
   "  --trace DIR          write, as the fit goes, the model after each split tried (kept or\n"
-  "                       undone) and each part removed, then the first fit and the final\n"
-  "                       model, to DIR (created if missing): NN_KIND.ply (pieces coloured by\n"
-  "                       component) and NN_KIND.dot (hierarchy), KIND first_fit, split, undo,\n"
-  "                       remove or final\n"
+  "                       undone), each part removed and a revert, then the first fit and the\n"
+  "                       final model, to DIR (created if missing): NN_KIND.ply (pieces\n"
+  "                       coloured by component) and NN_KIND.dot (hierarchy), KIND first_fit,\n"
+  "                       split, undo, remove, revert or final\n"
   "  --no-holes           do not add holes (this release never does)\n"
   "  --max-iterations N   iteration limit of each fit to rest (default 100)\n"
   "  --seed N             random seed for the point subsets (default 0)\n"
@@ -116,7 +116,8 @@ Json event_json(const BS::Evolution_event& e)
   j["kind"] = BS::evolution_event_name(e.kind);
   j["iteration"] = double(e.iteration);
   j["component"] = double(e.component);
-  if(e.kind != BS::Evolution_event_kind::Remove) // (a removal has no proposal)
+  // (a removal and a revert have no proposal)
+  if(e.kind == BS::Evolution_event_kind::Split || e.kind == BS::Evolution_event_kind::Undo)
   {
     j["new_component"] = double(e.new_component);
     if(e.proposal.segment != BS::Split_proposal::none) // (a crease segment's proposal has no boundary)

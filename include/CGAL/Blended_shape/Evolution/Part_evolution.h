@@ -43,7 +43,11 @@ enum class Evolution_event_kind
 {
   Split, ///< a split that paid for its parameters: kept
   Undo,  ///< a split that did not: the model was restored exactly
-  Remove ///< a part that no longer paid for its parameters: merged back into its base (Blended_shape::merge_split())
+  Remove, ///< a part that no longer paid for its parameters: merged back into its base (Blended_shape::merge_split())
+  /// Split_source::Branch_segments: the evolved model did not pay for its
+  /// parameters against the model the evolution was made with, fitted to
+  /// rest on all the points: that model replaced it (see Part_evolution)
+  Revert
 };
 
 /// \ingroup PkgBlendedShapeEvolution
@@ -51,21 +55,21 @@ enum class Evolution_event_kind
 /// or a part removed.
 struct Evolution_event
 {
-  Evolution_event_kind kind = Evolution_event_kind::Split; ///< kept, undone or removed
+  Evolution_event_kind kind = Evolution_event_kind::Split; ///< kept, undone, removed or reverted
   std::size_t iteration = 0;  ///< fitting iterations done before the event
-  std::size_t component = 0;  ///< the component split (Remove: the component removed)
+  std::size_t component = 0;  ///< the component split (Remove: the component removed; Revert: 0)
   std::size_t new_component = 0; ///< the component the split added (gone again after an undo; Remove: 0)
   std::size_t boundary = 0;   ///< the boundary curve of the force analysis it came from (Remove: 0; from a crease segment: Split_proposal::none, see `proposal.segment`)
   Split_proposal proposal;    ///< where (Remove: the default)
   double description_length_before = 0.; ///< of the model at rest before the event (see Part_evolution)
-  double description_length_after = 0.;  ///< of the split model at rest (Remove: of the model without the part, not refitted)
+  double description_length_after = 0.;  ///< of the split model at rest (Remove: of the model without the part, not refitted; Revert: of the model that replaced the evolved one, at rest)
   double rms_before = 0.;     ///< RMS distance of the points to the model before the event
   double rms_after = 0.;      ///< the same after it (for a split, after fitting the split model to rest)
   bool accepted() const { return kind == Evolution_event_kind::Split; } ///< whether it is a split that was kept
 };
 
 /// \ingroup PkgBlendedShapeEvolution
-/// The name of an event kind, for output: "split", "undo", "remove".
+/// The name of an event kind, for output: "split", "undo", "remove", "revert".
 inline const char* evolution_event_name(Evolution_event_kind k)
 {
   switch(k)
@@ -73,6 +77,7 @@ inline const char* evolution_event_name(Evolution_event_kind k)
   case Evolution_event_kind::Split: return "split";
   case Evolution_event_kind::Undo: return "undo";
   case Evolution_event_kind::Remove: return "remove";
+  case Evolution_event_kind::Revert: return "revert";
   }
   return "unknown";
 }
@@ -108,7 +113,8 @@ struct Default_evolution_visitor : Default_fitting_visitor
   /// A split was kept; `model` (a Deformable_blended_model) is the split one, at rest.
   template <class Model>
   void on_split(const Evolution_event& /*event*/, const Model& /*model*/) {}
-  /// A split did not pay for its parameters and was undone; `model` is the one restored.
+  /// A split did not pay for its parameters and was undone, or (Evolution_event_kind::Revert)
+  /// the evolved model did not pay against the one evolution started from; `model` is the one restored.
   template <class Model>
   void on_undo(const Evolution_event& /*event*/, const Model& /*model*/) {}
   /// A part no longer paid for its parameters and was removed; `model` is the one without it (not yet refitted).
@@ -251,7 +257,14 @@ fitted to the same points, and an undone split leaves the branch joined
 without a part. run() tries each branch once, in that order; the branches
 left at the part limit or the target accuracy are joined without parts, so
 that the model ends fitted to all the points. The description length then
-counts the share of the points the fits see (described_points()).
+counts the share of the points the fits see (described_points()). Fits that
+start from a part of the points can end in a worse basin than one
+superquadric fitted to all of them (a box seen from one side: its central
+branch is a flat patch, whose superquadric grows to the size bound): at the
+end of run(), the model the evolution was made with (in fit_blended_shape(),
+the least-squares superquadric of all the points), fitted to rest on all the
+points, replaces the evolved one if its description length is no larger
+(an Evolution_event_kind::Revert event; the visitor's on_undo()).
 
 Rest states: the fits of evolution (and the fit of a crease segment's
 part) wait at a rest state for the damping to grow until the step is
@@ -316,7 +329,10 @@ public:
         kept.push_back(all[i]);
       }
     if(m_settings.split_source == Split_source::Branch_segments)
+    {
+      m_initial = initial;
       join_central_branch(kept);
+    }
     else
     {
       m_joined.resize(m_kept.size());
@@ -698,6 +714,8 @@ public:
       internal::notify_phase(visitor, Evolution_phase::Fit_to_rest, model().shape().number_of_components());
       join_branches(rest, visitor, callback);
     }
+    if(branches && !m_last_fit.aborted && model().shape().number_of_components() > 1)
+      revert_if_unpaid(visitor, callback);
     status.iterations = m_iterations - start;
     status.aborted = m_last_fit.aborted;
     // After an undo the model is the one at rest before the split.
@@ -1045,6 +1063,39 @@ private:
     ++m_version;
   }
 
+  // Split_source::Branch_segments, at the end of run(): the model the
+  // evolution was made with, fitted to rest on all the points, replaces the
+  // current one (fitted to them too) if its description length is no larger
+  // (see the class description). A stopped fit changes nothing.
+  template <class Visitor>
+  void revert_if_unpaid(Visitor&& visitor, const std::function<bool(double)>& callback)
+  {
+    auto initial = std::make_unique<Fitter>(m_points, *m_initial, m_fitter->settings());
+    const Fitting_status rest = initial->run(visitor, callback);
+    m_iterations += rest.iterations;
+    if(rest.aborted)
+    {
+      m_last_fit = rest;
+      return;
+    }
+    Evolution_event e;
+    e.kind = Evolution_event_kind::Revert;
+    e.iteration = m_iterations;
+    const double msd_before = mean_squared_distance(), msd_after = mean_squared_distance_of(*initial);
+    e.description_length_before = description_length_of(msd_before, model());
+    e.description_length_after = description_length_of(msd_after, initial->model());
+    e.rms_before = std::sqrt(msd_before);
+    e.rms_after = std::sqrt(msd_after);
+    if(!(e.description_length_after <= e.description_length_before))
+      return;
+    m_fitter = std::move(initial);
+    ++m_version;
+    m_last_fit = rest;
+    m_rest_converged = rest.converged;
+    m_events.push_back(e);
+    internal::notify_event(visitor, m_events.back(), model());
+  }
+
   // Joins the branches `segments` to the points fitted and fits the
   // current model to rest on them, the projections of the points joined
   // before starting from their foot points. If `callback` stops the fit,
@@ -1132,6 +1183,7 @@ private:
   };
   Measure m_measured;
   mutable std::optional<Crease_segments> m_segments; // see propose_segment_splits()
+  std::optional<Model> m_initial; // Split_source::Branch_segments: the model given, see revert_if_unpaid()
 };
 
 } // namespace Blended_shapes
