@@ -247,7 +247,7 @@ this source the fits see the points of the branches joined so far
 branch without a parent; branches of fewer than `minimum_segment_share`
 of the points belong to their nearest larger ancestor, the other
 connected pieces grow from the central branch) when the evolution is
-made, fitted with a superquadric of its own at the start of run()
+made, fitted with a superquadric of its own at the start of the first run()
 (fit_superquadric(), least squares; the model given serves the steps
 driven by hand). propose_splits() proposes the largest branch not joined
 whose parent is; try_split() first joins it (the model fitted to rest on
@@ -464,10 +464,7 @@ public:
       // `merged` is new: its search is the fresh one (mean_squared_distance_of()
       // would make an identical second fitter).
       const double msd_after = merged->mean_squared_distance(true);
-      e.description_length_before = description_length_of(msd_before, model());
-      e.description_length_after = description_length_of(msd_after, merged->model());
-      e.rms_before = std::sqrt(msd_before);
-      e.rms_after = std::sqrt(msd_after);
+      set_measures(e, msd_before, model(), msd_after, merged->model());
       if(!(e.description_length_after <= e.description_length_before))
         continue;
       m_fitter = std::move(merged);
@@ -660,7 +657,7 @@ public:
     const std::size_t start = m_iterations;
     const bool branches = m_settings.split_source == Split_source::Branch_segments;
     internal::notify_phase(visitor, Evolution_phase::Fit_to_rest, model().shape().number_of_components());
-    if(branches && m_events.empty())
+    if(branches && !m_central_branch_fitted)
       start_from_central_branch_fit(callback);
     if(!m_last_fit.aborted)
       fit_to_rest(visitor, callback);
@@ -1061,6 +1058,7 @@ private:
       return;
     m_fitter = std::make_unique<Fitter>(m_points, make_blended_model(fitted.model), m_fitter->settings());
     ++m_version;
+    m_central_branch_fitted = true;
   }
 
   // Split_source::Branch_segments, at the end of run(): the model the
@@ -1081,11 +1079,7 @@ private:
     Evolution_event e;
     e.kind = Evolution_event_kind::Revert;
     e.iteration = m_iterations;
-    const double msd_before = mean_squared_distance(), msd_after = mean_squared_distance_of(*initial);
-    e.description_length_before = description_length_of(msd_before, model());
-    e.description_length_after = description_length_of(msd_after, initial->model());
-    e.rms_before = std::sqrt(msd_before);
-    e.rms_after = std::sqrt(msd_after);
+    set_measures(e, mean_squared_distance(), model(), mean_squared_distance_of(*initial), initial->model());
     if(!(e.description_length_after <= e.description_length_before))
       return;
     m_fitter = std::move(initial);
@@ -1143,6 +1137,17 @@ private:
     return (std::min)(fitter.mean_squared_distance(true), fresh.mean_squared_distance(true));
   }
 
+  // The description lengths and RMS distances of `e`: before it `model_before`
+  // at mean squared distance `msd_before`, after it `model_after` at `msd_after`.
+  void set_measures(Evolution_event& e, double msd_before, const Model& model_before, double msd_after,
+                    const Model& model_after) const
+  {
+    e.description_length_before = description_length_of(msd_before, model_before);
+    e.description_length_after = description_length_of(msd_after, model_after);
+    e.rms_before = std::sqrt(msd_before);
+    e.rms_after = std::sqrt(msd_after);
+  }
+
   // L of `model` at mean squared distance `msd`.
   double description_length_of(double msd, const Model& model) const
   {
@@ -1184,6 +1189,7 @@ private:
   Measure m_measured;
   mutable std::optional<Crease_segments> m_segments; // see propose_segment_splits()
   std::optional<Model> m_initial; // Split_source::Branch_segments: the model given, see revert_if_unpaid()
+  bool m_central_branch_fitted = false; // Split_source::Branch_segments: whether run() fitted the central branch
 };
 
 } // namespace Blended_shapes
