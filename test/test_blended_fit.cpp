@@ -260,6 +260,17 @@ void test_good_run(const Temp_dir& dir)
   BS_CHECK(summary.numbers["points"] == 800 && summary.numbers["parameters"] == 12 && summary.numbers["parts"] == 1,
            "points / parameters / parts: " << summary.numbers["points"] << " / " << summary.numbers["parameters"]
                                            << " / " << summary.numbers["parts"]);
+  // Evolution on a sample (400 of the 800 points), whose first fit sees
+  // the sample only: the summary still counts every input point.
+  {
+    std::string sampled_out;
+    BS_CHECK(run(quote(tool) + " " + quote(dir / "cloud.xyz") + " --quiet --evolution-points 400", dir, nullptr,
+                 &sampled_out) == 0,
+             "run with --evolution-points 400 failed");
+    Json_checker sampled(sampled_out);
+    BS_CHECK(sampled.valid() && sampled.numbers["points"] == 800 && sampled.numbers["parts"] == 1,
+             "--evolution-points 400: points / parts " << sampled.numbers["points"] << " / " << sampled.numbers["parts"]);
+  }
   BS_CHECK(summary.numbers["rms_over_bbox_diagonal"] < 0.01, "a poor fit of a clean superquadric");
   const std::size_t events = count_of(out, "\"kind\": ");
   BS_CHECK(out.find("\"events\": [") != std::string::npos && count_of(out, "\"kind\": \"split\"") == 0,

@@ -850,6 +850,18 @@ void test_fit_blended_shape()
              BS::testing::same_bits(limited.first_fit.model.parameters(), single.model.parameters()),
            "maximum_number_of_parts(1): a split tried, or not the fit of fit_superquadric()");
 
+  // Evolution on a sample (500 of the 1500 points) starts from the
+  // least-squares fit of the sample alone; with one part at the end, the
+  // result is still fit_superquadric()'s of all the points, bit for bit.
+  const auto on_sample = BS::fit_blended_shape(
+    points, BSP::maximum_evolution_points(std::size_t(500), BSP::split_source(BS::Split_source::Force_regions)));
+  BS_CHECK(on_sample.number_of_parts() == 1 && on_sample.first_fit.metrics.number_of_points <= 500 &&
+             BS::testing::same_bits(on_sample.model.parameters(), robust.parameters()) &&
+             on_sample.metrics.rms == single.metrics.rms && on_sample.stray_points == single.stray_points,
+           "evolution on a sample of one superquadric: " << on_sample.number_of_parts() << " parts, first fit of "
+                                                         << on_sample.first_fit.metrics.number_of_points
+                                                         << " points, or not the result of fit_superquadric()");
+
   const auto b = fit(points, 2);
   bool same = BS::testing::same_bits(a.model.parameters(), b.model.parameters()) && a.events.size() == b.events.size();
   for(std::size_t i = 0; same && i < a.events.size(); ++i)
@@ -1035,6 +1047,15 @@ void test_broken_down_robust_fit_not_returned()
              a.stray_points.empty() && a.first_fit.stray_points.empty(),
            "a robust fit that took " << robust.stray_points.size() << " of " << points.size()
                                      << " points for strays was returned instead of the least-squares fit");
+  // The same with evolution on a sample: the least-squares fit of all the
+  // points, not the first fit, which was of the sample.
+  const auto s = BS::fit_blended_shape(
+    points, BS::parameters::target_accuracy(0.5, BS::parameters::maximum_evolution_points(std::size_t(500))));
+  const auto least_squares = BS::fit_superquadric(points, BS::parameters::robust_weighting(BS::Robust_weighting::None));
+  BS_CHECK(s.number_of_parts() == 1 && s.first_fit.metrics.number_of_points <= 500 &&
+             s.metrics.number_of_points == points.size() && s.stray_points.empty() &&
+             BS::testing::same_bits(s.model.parameters(), BS::make_blended_model(least_squares.model).parameters()),
+           "evolution on a sample: the result is not the least-squares fit of all the points");
   std::cout << "  body with a part: the robust fit takes " << robust.stray_points.size() << " of " << points.size()
             << " points for strays; the least-squares fit is returned" << std::endl;
 }

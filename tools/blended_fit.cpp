@@ -147,13 +147,13 @@ const char* end_of_evolution(const Result& r, bool no_split)
   return "no split paid for its parameters";
 }
 
-std::string summary_text(const Result& r, const std::string& input, bool no_split, std::size_t max_parts,
-                         BS::Split_source split_source)
+std::string summary_text(const Result& r, const std::string& input, std::size_t number_of_points, bool no_split,
+                         std::size_t max_parts, BS::Split_source split_source)
 {
   const BS::Fit_metrics& m = r.metrics;
   Json s = Json::object();
   s["input"] = input;
-  s["points"] = double(r.first_fit.metrics.number_of_points);
+  s["points"] = double(number_of_points); // (the first fit's may be those of evolution's sample)
   s["parameters"] = double(r.model.number_of_parameters());
   s["iterations"] = double(m.iterations);
   s["iterations_on_all_points"] = double(m.iterations_on_all_points);
@@ -382,7 +382,7 @@ int main(int argc, char** argv)
                 << result.metrics.seconds << " s\n";
 
     // Everything is formatted before anything is written: no half outputs.
-    const std::string summary = summary_text(result, input, no_split, max_parts, split_source);
+    const std::string summary = summary_text(result, input, points.size(), no_split, max_parts, split_source);
     if(!mesh.empty())
     {
       const auto pieces = pieces_of(result.model);

@@ -40,24 +40,39 @@ inline Evolution_event event_in_input_unit(Evolution_event e, double scale, doub
   return e;
 }
 
-// The points evolution works on (Evolution_settings::maximum_evolution_points):
-// every k-th point of `points` not `isolated`, in order, k the smallest that
-// leaves at most `maximum` (0: all of them).
-template <class Point_3>
-std::vector<Point_3> evolution_points(const std::vector<Point_3>& points, const std::vector<bool>& isolated,
-                                      std::size_t maximum)
+// The indices (increasing) of the points evolution works on
+// (Evolution_settings::maximum_evolution_points): every k-th point not
+// `isolated`, in order, k the smallest that leaves at most `maximum` (0: all of them).
+inline std::vector<std::size_t> evolution_sample(const std::vector<bool>& isolated, std::size_t maximum)
 {
-  std::vector<Point_3> kept;
-  for(std::size_t i = 0; i < points.size(); ++i)
+  std::vector<std::size_t> kept;
+  for(std::size_t i = 0; i < isolated.size(); ++i)
     if(!isolated[i])
-      kept.push_back(points[i]);
+      kept.push_back(i);
   if(maximum == 0 || kept.size() <= maximum)
     return kept;
   const std::size_t k = (kept.size() + maximum - 1) / maximum;
-  std::vector<Point_3> thinned;
+  std::vector<std::size_t> thinned;
   for(std::size_t i = 0; i < kept.size(); i += k)
     thinned.push_back(kept[i]);
   return thinned;
+}
+
+// The points of `points` (through `point_map`) at `indices` (increasing).
+template <class Point_3, class PointRange, class PointMap>
+std::vector<Point_3> points_at(const PointRange& points, const PointMap& point_map,
+                               const std::vector<std::size_t>& indices)
+{
+  std::vector<Point_3> selected;
+  selected.reserve(indices.size());
+  std::size_t i = 0, next = 0;
+  for(auto it = points.begin(); it != points.end() && next < indices.size(); ++it, ++i)
+    if(indices[next] == i)
+    {
+      selected.push_back(get(point_map, *it));
+      ++next;
+    }
+  return selected;
 }
 
 // `model` with the curves of all its blending regions held (`held` true) or
@@ -118,8 +133,8 @@ struct Blended_fit_result
   std::vector<Evolution_event> events;
   Evolution_status status;              ///< how evolution ended (its iterations do not count the first fit's)
   /// The fit figures of the model (compute_fit_metrics(), in the unit of
-  /// the input; relative RMS in the frame of the first fit's initial
-  /// ellipsoid, as in eq. 14): those of the fit of one superquadric the
+  /// the input; relative RMS in the frame of the initial ellipsoid of all
+  /// the points, as in eq. 14): those of the fit of one superquadric the
   /// model is (see fit_blended_shape()), or after a kept split, those of
   /// the least-squares fit of all the points not isolated (evolution's, or
   /// with a sample the final fit's).
@@ -132,8 +147,10 @@ struct Blended_fit_result
   /// with a sample, see fit_blended_shape(), those of all the points).
   std::vector<std::size_t> stray_points;
   /// The fit of one superquadric evolution started from: by least squares
-  /// (`robust_weighting` `Robust_weighting::None`), as evolution's fits are;
-  /// with `maximum_number_of_parts` 1, fit_superquadric() as asked for.
+  /// (`robust_weighting` `Robust_weighting::None`), as evolution's fits are,
+  /// of the points evolution sees (with a sample, see fit_blended_shape(),
+  /// of the sample alone); with `maximum_number_of_parts` 1,
+  /// fit_superquadric() of all the points as asked for.
   Fit_result<GeomTraits> first_fit;
   /// The number of parts of the model (its components).
   std::size_t number_of_parts() const { return model.shape().number_of_components(); }
@@ -151,7 +168,7 @@ struct Blended_fit_result
 \ingroup PkgBlendedShapeEvolution
 
 Fits a blended shape to `points` in one call: one superquadric first
-(fit_superquadric() by least squares), then part evolution
+(fit_superquadric() by least squares, of the points evolution sees), then part evolution
 (Part_evolution::run(): splits where the forces at rest say the model
 cannot fit the data, each kept only if it pays for its parameters).
 
@@ -160,16 +177,18 @@ isolated (see Part_evolution), so it starts from the least-squares fit: a
 robust fit of an object made of parts fits its largest part and takes the
 others for strays. When evolution ends with one part (no split kept, or
 every part split off removed again), the model is that of
-fit_superquadric() with the named parameters as given (robust to stray
-points by default), bit for bit, unless that fit judged more than half of
-the points stray: a fit that explains a minority of the points fits one
-part of an object made of several (the box/cylinder scan: 70 % "strays"),
-and the least-squares fit stays. With `maximum_number_of_parts` 1,
+fit_superquadric() of all the points with the named parameters as given
+(robust to stray points by default), bit for bit, unless that fit judged
+more than half of the points stray: a fit that explains a minority of the
+points fits one part of an object made of several (the box/cylinder scan:
+70 % "strays"), and the least-squares fit of all the points stays. With `maximum_number_of_parts` 1,
 evolution is skipped and the model is always fit_superquadric()'s.
 
 Of more points than `maximum_evolution_points` (4000 by default),
 evolution sees an even sample: every `k`-th point of those not isolated, in
-input order. Its split test still counts all of them
+input order, and so does the first fit (evolution fits the sample again at
+once: a first fit of all the points would only cost time, 0.7 of the
+box/cylinder scan's first second). Its split test still counts all of them
 (Part_evolution::set_described_points()), and the evolved model is then
 fitted to rest on all of them, each projection starting from the foot
 point of the nearest point of the sample
@@ -229,37 +248,26 @@ auto fit_blended_shape(const PointRange& points, const NamedParameters& np = CGA
     internal::check_reference_mesh(*reference, "fit_blended_shape");
   const auto single_np = parameters::reference_mesh(static_cast<const Mesh*>(nullptr), np);
 
-  // Evolution fits by least squares (see Part_evolution), so it starts from
-  // the least-squares fit of one superquadric: a robust fit of an object made
-  // of parts fits the largest part and takes the others for strays (on the
-  // box/cylinder scan, 70 % of the points), a start that no split repairs.
   const bool evolve = evolution_settings.maximum_number_of_parts > 1;
   const Fitting_settings fitting = settings_from_named_parameters(np);
   const bool robust = fitting.robust_weighting != Robust_weighting::None;
-  // (Its rest, the start of evolution, is not settled early: see Part_evolution.)
-  Fit_result<Geom_traits> first_fit =
-    evolve ? fit_superquadric(points, parameters::settling_tolerance(Part_evolution<Geom_traits>::settling_tolerance,
-                                                                parameters::robust_weighting(Robust_weighting::None, single_np)))
-           : fit_superquadric(points, single_np);
-  Result result{make_blended_model(first_fit.model), {}, {}, first_fit.metrics, first_fit.stray_points, std::move(first_fit)};
-  const Fit_result<Geom_traits>& first = result.first_fit;
-  result.status.converged = first.metrics.converged;
-  result.status.aborted = first.metrics.aborted; // the model is then the first fit's, as far as it went
-  result.status.part_limit_reached = !evolve;
-  std::size_t iterations = first.metrics.iterations;
-  std::size_t iterations_on_all_points = first.metrics.iterations_on_all_points;
-  if(evolve && !result.status.aborted)
+  typedef typename Geom_traits::Point_3 Point_3;
+  typedef typename Part_evolution<Geom_traits>::Fitter Fitter;
+
+  // Evolution works on the points centred at about unit size; of more points
+  // not isolated than evolution_settings.maximum_evolution_points, on an
+  // even sample of them (`sample`, their indices; empty: all the points),
+  // and the evolved model is then fitted to all of them.
+  std::unique_ptr<const internal::Point_normalization<Geom_traits>> normalization;
+  std::vector<Point_3> normalized;
+  std::vector<Eigen::Vector3d> coordinates;
+  std::vector<bool> isolated;
+  std::vector<std::size_t> sample;
+  std::size_t fitted = 0; // the points not isolated, with a sample
+  if(evolve)
   {
-    const internal::Point_normalization<Geom_traits> normalization(points, point_map);
-    typedef typename Geom_traits::Point_3 Point_3;
-    typedef typename Part_evolution<Geom_traits>::Fitter Fitter;
-    const std::vector<Point_3> normalized = normalization.normalized_points(points, point_map);
-    // More points than evolution_settings.maximum_evolution_points: evolution
-    // sees an even sample of those not isolated, and the evolved model is then
-    // fitted to all of them.
-    std::vector<Eigen::Vector3d> coordinates;
-    std::vector<bool> isolated;
-    std::size_t fitted = normalized.size();
+    normalization = std::make_unique<const internal::Point_normalization<Geom_traits>>(points, point_map);
+    normalized = normalization->normalized_points(points, point_map);
     const std::size_t maximum = evolution_settings.maximum_evolution_points;
     if(maximum > 0 && normalized.size() > maximum)
     {
@@ -267,17 +275,49 @@ auto fit_blended_shape(const PointRange& points, const NamedParameters& np = CGA
         coordinates.emplace_back(CGAL::to_double(p.x()), CGAL::to_double(p.y()), CGAL::to_double(p.z()));
       isolated = internal::isolated_points(coordinates);
       fitted = std::size_t(std::count(isolated.begin(), isolated.end(), false));
+      if(fitted > maximum)
+        sample = internal::evolution_sample(isolated, maximum);
     }
-    const bool sampled = maximum > 0 && fitted > maximum;
-    Part_evolution<Geom_traits> evolution(sampled ? internal::evolution_points(normalized, isolated, maximum) : normalized,
-                                          make_blended_model(normalization.model_to_normalized(first.model)),
+  }
+  const bool sampled = !sample.empty();
+
+  // Evolution fits by least squares (see Part_evolution), so it starts from
+  // the least-squares fit of one superquadric: a robust fit of an object made
+  // of parts fits the largest part and takes the others for strays (on the
+  // box/cylinder scan, 70 % of the points), a start that no split repairs.
+  // (Its rest, the start of evolution, is not settled early: see Part_evolution.)
+  // With a sample, that fit is of the sample: evolution fits it again at
+  // once, and a fit of all the points would only cost time (on the
+  // box/cylinder scan 0.7 of 1 s).
+  const auto least_squares_np = parameters::settling_tolerance(
+    Part_evolution<Geom_traits>::settling_tolerance, parameters::robust_weighting(Robust_weighting::None, single_np));
+  Fit_result<Geom_traits> first_fit =
+    !evolve   ? fit_superquadric(points, single_np)
+    : sampled ? fit_superquadric(internal::points_at<Point_3>(points, point_map, sample),
+                                 least_squares_np.point_map(CGAL::Identity_property_map<Point_3>()))
+              : fit_superquadric(points, least_squares_np);
+  Result result{make_blended_model(first_fit.model), {}, {}, first_fit.metrics, first_fit.stray_points, std::move(first_fit)};
+  const Fit_result<Geom_traits>& first = result.first_fit;
+  result.status.converged = first.metrics.converged;
+  result.status.aborted = first.metrics.aborted; // the model is then the first fit's, as far as it went
+  result.status.part_limit_reached = !evolve;
+  std::size_t iterations = first.metrics.iterations;
+  // (with a sample, none of the first fit's iterations used all the points)
+  std::size_t iterations_on_all_points = sampled ? 0 : first.metrics.iterations_on_all_points;
+  if(evolve && !result.status.aborted)
+  {
+    std::vector<Point_3> evolution_points;
+    for(std::size_t i : sample)
+      evolution_points.push_back(normalized[i]);
+    Part_evolution<Geom_traits> evolution(sampled ? evolution_points : normalized,
+                                          make_blended_model(normalization->model_to_normalized(first.model)),
                                           fitting, evolution_settings);
     // The split test asks as much of a split as on all the points
     // (Part_evolution::set_described_points()).
     if(sampled)
       evolution.set_described_points(fitted);
     const double n = double(evolution.described_points());
-    internal::Input_frame_visitor<decltype(visitor), Geom_traits> input_visitor{visitor, normalization, n};
+    internal::Input_frame_visitor<decltype(visitor), Geom_traits> input_visitor{visitor, *normalization, n};
     result.status = evolution.run(input_visitor, callback);
     iterations += result.status.iterations;
     // Evolution fits all its points at every step, but with the branches
@@ -285,7 +325,7 @@ auto fit_blended_shape(const PointRange& points, const NamedParameters& np = CGA
     if(!sampled && evolution_settings.split_source != Split_source::Branch_segments)
       iterations_on_all_points += result.status.iterations;
     for(const Evolution_event& e : evolution.events())
-      result.events.push_back(internal::event_in_input_unit(e, normalization.scale(), n));
+      result.events.push_back(internal::event_in_input_unit(e, normalization->scale(), n));
     if(evolution.model().shape().number_of_components() > 1)
     {
       Fitter* rest_fitter = &evolution.fitter();
@@ -342,21 +382,33 @@ auto fit_blended_shape(const PointRange& points, const NamedParameters& np = CGA
       }
       else
         result.stray_points = evolution.isolated_points();
-      result.model = normalization.model_from_normalized(internal::with_blending_regions_held(rest_fitter->model(), false));
-      result.metrics = normalization.from_normalized(
-        compute_fit_metrics(*rest_fitter, normalization.to_normalized(first.initial_ellipsoid), rest));
+      result.model = normalization->model_from_normalized(internal::with_blending_regions_held(rest_fitter->model(), false));
+      // (eq. 14's frame: the initial ellipsoid of all the points, as in a fit of one superquadric)
+      result.metrics = normalization->from_normalized(compute_fit_metrics(
+        *rest_fitter, sampled ? initialize_from_moments(normalized) : normalization->to_normalized(first.initial_ellipsoid),
+        rest));
     }
-    else if(robust && !result.status.aborted)
+    else if((robust || sampled) && !result.status.aborted)
     {
       // One part after all: the fit of one superquadric as asked for
-      // (robust), unless it takes most points for strays: then it fits one
-      // part of an object made of several, and the least-squares fit,
-      // which fits them all, stays.
-      const Fit_result<Geom_traits> single = fit_superquadric(points, single_np);
+      // (robust, or of all the points where the first fit saw a sample),
+      // unless a robust fit takes most points for strays: then it fits one
+      // part of an object made of several, and the least-squares fit of all
+      // the points, which fits them all, stays.
+      Fit_result<Geom_traits> single = fit_superquadric(points, single_np);
       iterations += single.metrics.iterations;
       iterations_on_all_points += single.metrics.iterations_on_all_points;
       result.status.aborted = single.metrics.aborted;
-      if(2 * single.stray_points.size() <= single.metrics.number_of_points)
+      bool kept = !(robust && 2 * single.stray_points.size() > single.metrics.number_of_points);
+      if(!kept && sampled && !result.status.aborted)
+      {
+        single = fit_superquadric(points, parameters::robust_weighting(Robust_weighting::None, single_np));
+        iterations += single.metrics.iterations;
+        iterations_on_all_points += single.metrics.iterations_on_all_points;
+        result.status.aborted = single.metrics.aborted;
+        kept = true;
+      }
+      if(kept)
       {
         result.model = make_blended_model(single.model);
         result.metrics = single.metrics;
