@@ -306,10 +306,9 @@ auto fit_blended_shape(const PointRange& points, const NamedParameters& np = CGA
   std::size_t iterations_on_all_points = sampled ? 0 : first.metrics.iterations_on_all_points;
   if(evolve && !result.status.aborted)
   {
-    std::vector<Point_3> evolution_points;
-    for(std::size_t i : sample)
-      evolution_points.push_back(normalized[i]);
-    Part_evolution<Geom_traits> evolution(sampled ? evolution_points : normalized,
+    Part_evolution<Geom_traits> evolution(sampled ? internal::points_at<Point_3>(
+                                                      normalized, CGAL::Identity_property_map<Point_3>(), sample)
+                                                  : normalized,
                                           make_blended_model(normalization->model_to_normalized(first.model)),
                                           fitting, evolution_settings);
     // The split test asks as much of a split as on all the points
