@@ -21,6 +21,7 @@
 #include <cmath>
 #include <functional>
 #include <memory>
+#include <utility>
 #include <vector>
 
 namespace CGAL {
@@ -394,17 +395,18 @@ auto fit_blended_shape(const PointRange& points, const NamedParameters& np = CGA
       // unless a robust fit takes most points for strays: then it fits one
       // part of an object made of several, and the least-squares fit of all
       // the points, which fits them all, stays.
-      Fit_result<Geom_traits> single = fit_superquadric(points, single_np);
-      iterations += single.metrics.iterations;
-      iterations_on_all_points += single.metrics.iterations_on_all_points;
-      result.status.aborted = single.metrics.aborted;
+      // (each such fit counts in the call's iterations; an aborted one ends the call)
+      auto counted = [&](Fit_result<Geom_traits>&& fit) {
+        iterations += fit.metrics.iterations;
+        iterations_on_all_points += fit.metrics.iterations_on_all_points;
+        result.status.aborted = fit.metrics.aborted;
+        return std::move(fit);
+      };
+      Fit_result<Geom_traits> single = counted(fit_superquadric(points, single_np));
       bool kept = !(robust && 2 * single.stray_points.size() > single.metrics.number_of_points);
       if(!kept && sampled && !result.status.aborted)
       {
-        single = fit_superquadric(points, parameters::robust_weighting(Robust_weighting::None, single_np));
-        iterations += single.metrics.iterations;
-        iterations_on_all_points += single.metrics.iterations_on_all_points;
-        result.status.aborted = single.metrics.aborted;
+        single = counted(fit_superquadric(points, parameters::robust_weighting(Robust_weighting::None, single_np)));
         kept = true;
       }
       if(kept)
