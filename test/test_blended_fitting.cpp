@@ -768,6 +768,23 @@ void test_chamfer_distance(const std::string& name, const Model<K>& m, const Reg
   CGAL::make_quad(typename K::Point_3(0., 0., 0.), typename K::Point_3(1., 0., 0.), typename K::Point_3(1., 1., 0.),
                   typename K::Point_3(0., 1., 0.), quad);
   BS_CHECK_REFUSED(std::invalid_argument, BS::symmetric_chamfer_distance(m, quad), "triangulate");
+  const auto two_triangles = [](double x_scale, double x_shift) {
+    Mesh t;
+    typedef typename K::Point_3 P;
+    const auto a = t.add_vertex(P(x_shift, 0., 0.)), b = t.add_vertex(P(x_scale + x_shift, 0., 0.));
+    const auto c = t.add_vertex(P(x_scale + x_shift, 1., 0.)), d = t.add_vertex(P(x_shift, 1., 0.));
+    t.add_face(a, b, c);
+    t.add_face(a, c, d);
+    return t;
+  };
+  // squared distances would overflow
+  BS_CHECK_REFUSED(std::invalid_argument, BS::symmetric_chamfer_distance(m, two_triangles(1e160, 0.)), "beyond");
+  // A reference far from the model (a wrong unit or origin): measured in
+  // plain doubles, finite, the distance between them.
+  const double far_away = 1e15;
+  const double far = BS::symmetric_chamfer_distance(m, two_triangles(1., far_away), 2000);
+  BS_CHECK(std::isfinite(far) && std::abs(far - far_away) < 1e-6 * far_away,
+           name << ": Chamfer distance " << far << " to a reference " << far_away << " away");
   std::cout << "  " << name << ": Chamfer distance to its own mesh " << self << ", moved by " << shift << " "
             << moved << ", split " << moved_split << std::endl;
 }

@@ -223,7 +223,7 @@ result does not depend on the unit of the points or on where they are.
     stops evolution, the model is the last one kept (see Part_evolution).
 
 \throws Input_error if the points are unusable; std::invalid_argument on invalid parameters
-        (a reference mesh without faces or with faces that are not triangles too).
+        (a reference mesh without faces, with faces that are not triangles, or with a coordinate that is not finite or beyond `maximum_coordinate_magnitude` too).
 */
 template <class PointRange, class NamedParameters = CGAL::parameters::Default_named_parameters>
 auto fit_blended_shape(const PointRange& points, const NamedParameters& np = CGAL::parameters::default_values())

@@ -29,7 +29,8 @@ surface point once, whatever pieces overlap there, the part a gradual blend
 expresses through its base's disk included) to the reference, and of as
 many points on the reference to the model's pieces (Blended_shape_pieces at
 `resolution`, its retained faces as placed by the pose). Deterministic for `seed`.
-\throws std::invalid_argument if `reference` has no face or a face that is not a triangle.
+\throws std::invalid_argument if `reference` has no face, a face that is not a triangle, or a coordinate
+that is not finite or beyond `maximum_coordinate_magnitude`.
 */
 template <class GeomTraits>
 double symmetric_chamfer_distance(const Deformable_blended_model<GeomTraits>& model,

@@ -4,10 +4,12 @@
 
 #include <CGAL/Blended_shape/Primitives/Chart_mesh.h>
 #include <CGAL/Blended_shape/Fitting/initialize_from_moments.h>
+#include <CGAL/Blended_shape/IO/Input_error.h>
 
-#include <CGAL/AABB_face_graph_triangle_primitive.h>
 #include <CGAL/AABB_traits.h>
 #include <CGAL/AABB_tree.h>
+#include <CGAL/AABB_triangle_primitive.h>
+#include <CGAL/Simple_cartesian.h>
 #include <CGAL/Surface_mesh.h>
 
 #include <Eigen/Core>
@@ -16,6 +18,7 @@
 #include <cmath>
 #include <optional>
 #include <random>
+#include <sstream>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -120,19 +123,31 @@ std::vector<std::array<typename Mesh::Point, 3>> mesh_triangles(const Mesh& mesh
   return t;
 }
 
+// The mean distance of `samples` to the triangles of `meshes`. A measurement,
+// not a decision: the search tree is built in plain double arithmetic
+// (Simple_cartesian<double>), whatever the meshes' kernel. With a filtered
+// kernel, a query far from every triangle (a reference mesh placed far from
+// the points) finds its candidate distances equal within the filter's bounds
+// and falls back to exact arithmetic at every node: minutes instead of
+// milliseconds.
 template <class Mesh>
 double mean_distance_to(const std::vector<typename Mesh::Point>& samples, const std::vector<const Mesh*>& meshes)
 {
-  typedef CGAL::AABB_face_graph_triangle_primitive<Mesh, CGAL::Default, CGAL::Tag_false> Primitive;
-  typedef typename CGAL::Kernel_traits<typename Mesh::Point>::Kernel K;
-  CGAL::AABB_tree<CGAL::AABB_traits<K, Primitive>> tree;
+  typedef CGAL::Simple_cartesian<double> DK;
+  typedef std::vector<DK::Triangle_3>::const_iterator Iterator;
+  typedef CGAL::AABB_triangle_primitive<DK, Iterator> Primitive;
+  const auto to_dk = [](const typename Mesh::Point& p) {
+    return DK::Point_3(CGAL::to_double(p.x()), CGAL::to_double(p.y()), CGAL::to_double(p.z()));
+  };
+  std::vector<DK::Triangle_3> triangles;
   for(const Mesh* m : meshes)
-    tree.insert(faces(*m).first, faces(*m).second, *m);
-  tree.build();
+    for(const auto& t : mesh_triangles(*m))
+      triangles.emplace_back(to_dk(t[0]), to_dk(t[1]), to_dk(t[2]));
+  CGAL::AABB_tree<CGAL::AABB_traits<DK, Primitive>> tree(triangles.begin(), triangles.end());
   tree.accelerate_distance_queries();
   double sum = 0.;
   for(const auto& p : samples)
-    sum += std::sqrt(CGAL::to_double(tree.squared_distance(p)));
+    sum += std::sqrt(tree.squared_distance(to_dk(p)));
   return samples.empty() ? 0. : sum / double(samples.size());
 }
 
@@ -146,6 +161,19 @@ void check_reference_mesh(const Mesh& reference, const std::string& who)
   if(!CGAL::is_triangle_mesh(reference))
     throw std::invalid_argument(who + ": the reference mesh has faces that are not triangles; triangulate it first "
                                       "(CGAL::Polygon_mesh_processing::triangulate_faces())");
+  for(auto v : vertices(reference))
+  {
+    const auto& p = reference.point(v);
+    for(const double x : {CGAL::to_double(p.x()), CGAL::to_double(p.y()), CGAL::to_double(p.z())})
+      if(!(std::abs(x) <= maximum_coordinate_magnitude))
+      {
+        std::ostringstream s;
+        s << who << ": reference mesh vertex " << std::size_t(v) << " (" << p << ") has a coordinate that is not finite "
+          << "or beyond " << maximum_coordinate_magnitude << " in absolute value, where squared distances overflow; "
+          << "give the reference in the points' unit and place, with finite coordinates";
+        throw std::invalid_argument(s.str());
+      }
+  }
 }
 
 // The symmetric Chamfer distance from the model's samples and the model's
@@ -171,7 +199,8 @@ and a reference triangle mesh: the mean of the two mean closest-point
 distances, each over `samples` points spread uniformly by area on one surface
 (deterministic for `seed`). The chart meshes overlap near seams, which
 samples those bands twice; with the default margin the effect is small.
-\throws std::invalid_argument if `reference` has no face or a face that is not a triangle.
+\throws std::invalid_argument if `reference` has no face, a face that is not a triangle, or a coordinate
+that is not finite or beyond `maximum_coordinate_magnitude`.
 */
 template <class GeomTraits>
 double symmetric_chamfer_distance(const std::vector<Chart_mesh<GeomTraits>>& model,

@@ -143,7 +143,7 @@ done here: the model is always one superquadric.)
 
 \throws Input_error if the points are unusable (check_points(), before any fitting: e.g. `Scale_out_of_range`
         for coordinates whose squares overflow); std::invalid_argument on invalid parameters
-        (a reference mesh without faces or with faces that are not triangles too, before any fitting).
+        (a reference mesh without faces, with faces that are not triangles, or with a coordinate that is not finite or beyond `maximum_coordinate_magnitude` too, before any fitting).
 */
 template <class PointRange, class NamedParameters = CGAL::parameters::Default_named_parameters>
 auto fit_superquadric(const PointRange& points, const NamedParameters& np = CGAL::parameters::default_values())
