@@ -315,8 +315,9 @@ private:
   typedef typename boost::graph_traits<TriangleMesh>::halfedge_descriptor halfedge_descriptor;
 
 public:
+  /// Faces with collinear corners (no area) are not scanned.
   /// \throws std::invalid_argument if the mesh has no face, a non-triangle
-  /// face or a non-finite vertex coordinate.
+  /// face, a non-finite vertex coordinate, or only faces with collinear corners.
   explicit Range_scan_simulator(const TriangleMesh& mesh)
     : m_mesh(mesh)
   {
@@ -331,7 +332,23 @@ public:
       if(!internal::is_finite(internal::to_vec3(get(vertex_point, mesh, v))))
         throw std::invalid_argument(
           "Range_scan_simulator: the mesh has a vertex with a non-finite coordinate; fix the mesh");
-    m_tree.insert(faces(mesh).first, faces(mesh).second, mesh);
+    // A face with collinear corners has no area and no plane: a ray cannot
+    // see it (the faces around it cover what it spans), and intersecting a
+    // ray with it is undefined (CGAL's precondition), so it is left out.
+    std::vector<face_descriptor> seen;
+    const auto collinear = Geom_traits().collinear_3_object();
+    for(face_descriptor f : faces(mesh))
+    {
+      const halfedge_descriptor h = halfedge(f, mesh);
+      if(!collinear(get(vertex_point, mesh, source(h, mesh)), get(vertex_point, mesh, target(h, mesh)),
+                    get(vertex_point, mesh, target(next(h, mesh), mesh))))
+        seen.push_back(f);
+    }
+    if(seen.empty())
+      throw std::invalid_argument(
+        "Range_scan_simulator: every face of the mesh is degenerate (collinear corners, no area); "
+        "there is no surface to scan (check the mesh file)");
+    m_tree.insert(seen.begin(), seen.end(), mesh);
     m_tree.build();
   }
 
@@ -376,6 +393,13 @@ public:
           const double g = std::sqrt(-2. * std::log(1. - u1)) * std::cos(2. * M_PI * u2);
           const internal::Vec3 d = (options.noise_sigma * g / internal::norm(direction)) * direction;
           s.point = s.point + Vector_3(d.x, d.y, d.z);
+          if(!internal::is_finite(internal::to_vec3(s.point)))
+          {
+            std::ostringstream msg;
+            msg << "Range_scan_simulator: noise sigma " << options.noise_sigma
+                << " moves a sample past the largest finite coordinate; give a noise on the scale of the mesh";
+            throw std::invalid_argument(msg.str());
+          }
         }
         s.view = view_index;
         s.row = row;
