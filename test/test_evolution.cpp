@@ -683,6 +683,23 @@ void test_evolution_limits()
                                                    std::function<bool(double)>([&](double) { ++calls; return true; }))),
                    "fit_blended_shape: the reference mesh has no faces");
   BS_CHECK(calls == 0, "an empty reference mesh was refused after " << calls << " fitting iterations");
+  // One point repeated and one other: evolution sets the other aside as
+  // isolated, and must not then refuse the identical rest ("all points are
+  // identical"), a cloud the fit of one superquadric took.
+  std::vector<typename K::Point_3> repeated(200, typename K::Point_3(0.1, 0.2, 0.3));
+  repeated.emplace_back(1., 1., 1.);
+  bool fitted = true;
+  std::string message;
+  try
+  {
+    BS::fit_blended_shape(repeated, CGAL::parameters::number_of_iterations(20));
+  }
+  catch(const std::exception& e)
+  {
+    fitted = false;
+    message = e.what();
+  }
+  BS_CHECK(fitted, "a repeated point and one other: " << message);
 }
 
 // A split model fitted to rest by least squares, from the robust fit of one
