@@ -260,6 +260,9 @@ void test_text_formats(const Temp_dir& dir, const std::string& kernel)
     const std::string glued = "1 2 3\n1.5x 2 3\n" + xyz_lines(twelve);
     expect_read_error<Point_3>(BS::Input_error::Malformed_content, write_file(dir, "glued.xyz", glued),
                                {"line 2", "'1.5x'"}, "number followed by letters");
+    const std::string binary = std::string("1 2 3\n4 \x01\xff") + "z 6\n" + xyz_lines(twelve);
+    expect_read_error<Point_3>(BS::Input_error::Malformed_content, write_file(dir, "binary.xyz", binary),
+                               {"line 2", "'\\x01\\xffz' is not a number"}, "bytes that are not text");
     const std::string two = xyz_lines(twelve) + "\n1 2\n";
     expect_read_error<Point_3>(BS::Input_error::Malformed_content, write_file(dir, "two.xyz", two),
                                {"line 14", "only 2 numbers"}, "line with 2 numbers");
@@ -365,7 +368,7 @@ void test_ply(const Temp_dir& dir, const std::string& kernel)
                              write_file(dir, "integer.ply", header +
                                         "property int x\nproperty int y\nproperty int z\n"
                                         "end_header\n1 2 3\n"),
-                             {"integer.ply", "x has type int"}, "PLY with integer coordinates");
+                             {"integer.ply", "have coordinate x of type int"}, "PLY with integer coordinates");
   expect_read_error<Point_3>(BS::Input_error::Malformed_content,
                              write_file(dir, "no_z.ply", header +
                                         "property float x\nproperty float y\nend_header\n1 2\n"),

@@ -149,7 +149,7 @@ inline void check_ply_header(const std::string& filename, const std::string& fun
         if(type == "float" || type == "float32" || type == "double" || type == "float64")
           ++coordinates_found;
         else if(bad_property.empty())
-          bad_property = name + " has type " + type;
+          bad_property = name + " of type " + type;
       }
     }
   }
@@ -292,7 +292,20 @@ void read_text_points(const std::string& filename, bool skip_count_line,
         const char* token_end = c;
         while(*token_end != '\0' && !is_blank(*token_end))
           ++token_end;
-        std::string token(c, std::min<std::size_t>(std::size_t(token_end - c), 40));
+        // (bytes that are not printable ASCII shown as \xNN: a binary file's
+        // bytes would otherwise go to the terminal as they are)
+        std::string token;
+        for(const char* t = c; t != token_end && t != c + 40; ++t)
+        {
+          const unsigned char b = static_cast<unsigned char>(*t);
+          if(b >= 0x20 && b < 0x7f)
+            token += *t;
+          else
+          {
+            const char* hex = "0123456789abcdef";
+            token += std::string("\\x") + hex[b >> 4] + hex[b & 15];
+          }
+        }
         throw Input_error(Input_error::Malformed_content,
                           where + ": '" + token + "' is not a number" + syntax);
       }

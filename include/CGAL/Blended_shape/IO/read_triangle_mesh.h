@@ -140,7 +140,7 @@ void read_triangle_mesh(const std::string& filename, Mesh& mesh)
     throw Input_error(Input_error::No_points,
                       where + ": the mesh has no faces left after removing " +
                       internal::plural(polygons.size(), "degenerate face") +
-                      " (each repeated a vertex)" + no_surface);
+                      " (each had fewer than three distinct vertices)" + no_surface);
   PMP::merge_duplicate_polygons_in_polygon_soup(points, kept);
   internal::remove_unreferenced_points(points, kept);
 
