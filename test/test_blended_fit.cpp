@@ -208,11 +208,17 @@ void test_bad_input(const Temp_dir& dir)
     {quote(dir / "five.xyz") + " --splits sideways", 2},
     {quote(dir / "five.xyz") + " --area-weight -1", 2},
     {quote(dir / "five.xyz") + " --area-weight x", 2},
+    {quote(dir / "five.xyz") + " --area-weight 0x10", 2, "is not a number"},  // decimal only
     {quote(dir / "five.xyz") + " --blend-stages 0", 2},
     {quote(dir / "five.xyz") + " --stage-iterations 0", 2},
     {quote(dir / "five.xyz") + " --reference " + quote(dir / "missing.off"), 1, "missing.off"},
     {quote(dir / "five.xyz") + " --reference " + quote(dir / "garbage.off"), 1, "garbage.off"},
     {quote(dir / "five.xyz") + " --json", 2},           // missing value
+    // outputs checked before anything is read or fitted
+    {quote(dir / "five.xyz") + " --json " + quote(dir / "five.xyz"), 2, "same file"},  // would overwrite the input
+    {quote(dir / "five.xyz") + " --strays " + quote(dir / "m.ply"), 2, "same file"},    // two outputs in one file
+    {quote(dir / "five.xyz") + " --json " + quote(dir.path.string()), 2, "is a directory"},
+    {quote(dir / "five.xyz") + " --hierarchy " + quote(dir / "no_dir/h.dot"), 1, "does not exist"},
     {quote(dir / "a.xyz") + " " + quote(dir / "b.xyz"), 2}};
   for(const Case& c : cases)
   {
@@ -230,6 +236,40 @@ void test_bad_input(const Temp_dir& dir)
     BS_CHECK(dir.number_of_files() == files, "blended_fit " << c.args << " left a file behind");
   }
   blended_shape_test::report("blended_fit_bad_input");
+}
+
+// A write that fails after the fit (here a full disk) removes the outputs
+// written before it; a failed write to standard output is an error.
+void test_failed_writes(const Temp_dir& dir)
+{
+  if(!std::filesystem::is_character_file("/dev/full"))
+  {
+    std::cout << "blended_fit_failed_writes: skipped (no /dev/full)" << std::endl;
+    return;
+  }
+  std::mt19937_64 rng(6);
+  write_points(dir / "small.xyz", BS::testing::synthetic_scan(BS::testing::random_superellipsoid<K>(rng), 300, true, 0.002, rng));
+  const std::size_t files = dir.number_of_files();
+  std::string err;
+  const int code = run(quote(tool) + " " + quote(dir / "small.xyz") + " --quiet --no-split --mesh " + quote(dir / "m.ply") +
+                         " --hierarchy " + quote(dir / "h.dot") + " --model " + quote(dir / "model.json") +
+                         " --json /dev/full",
+                       dir, &err);
+  BS_CHECK(code == 1 && err.find("/dev/full") != std::string::npos,
+           "--json /dev/full: exit " << code << ", message '" << err << "'");
+  BS_CHECK(dir.number_of_files() == files, "a failed write left " << dir.number_of_files() - files << " outputs");
+  const std::string err_file = dir / "stderr.txt";
+  for(const std::string& args : {std::string(" --help"), " " + quote(dir / "small.xyz") + " --quiet --no-split"})
+  {
+    const int status = std::system((quote(tool) + args + " >/dev/full 2>" + quote(err_file)).c_str());
+    std::ifstream in(err_file);
+    std::string message;
+    std::getline(in, message);
+    BS_CHECK(WIFEXITED(status) && WEXITSTATUS(status) == 1 && message.find("standard output") != std::string::npos,
+             "blended_fit" << args << " >/dev/full: exit " << WEXITSTATUS(status) << ", message '" << message << "'");
+  }
+  std::filesystem::remove(err_file);
+  blended_shape_test::report("blended_fit_failed_writes");
 }
 
 void test_good_run(const Temp_dir& dir)
@@ -483,6 +523,7 @@ int main()
   test_json_checker();
   Temp_dir dir("blended_test_fit");
   test_bad_input(dir);
+  test_failed_writes(dir);
   test_good_run(dir);
   test_parts_run(dir);
   test_strays(dir);

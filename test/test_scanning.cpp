@@ -557,6 +557,9 @@ void test_bad_cameras()
   BS_CHECK(throws_invalid_argument([&] { simulator.scan(good, o); }), "dropout 1.5 accepted");
   o.dropout_probability = nan;
   BS_CHECK(throws_invalid_argument([&] { simulator.scan(good, o); }), "NaN dropout accepted");
+  o = BS::Scan_options();
+  o.noise_sigma = 1e308; // finite, but it carries samples past the largest double
+  BS_CHECK(throws_invalid_argument([&] { simulator.scan(good, o); }), "a noise that overflows the samples accepted");
 
   const Mesh<K> empty;
   BS_CHECK(throws_invalid_argument([&] { BS::Range_scan_simulator<Mesh<K>> s(empty); }), "empty mesh accepted");
@@ -566,7 +569,41 @@ void test_bad_cameras()
   quad.add_face(quad.add_vertex(P(0, 0, 0)), quad.add_vertex(P(1, 0, 0)), quad.add_vertex(P(1, 1, 0)),
                 quad.add_vertex(P(0, 1, 0)));
   BS_CHECK(throws_invalid_argument([&] { BS::Range_scan_simulator<Mesh<K>> s(quad); }), "quad mesh accepted");
+  Mesh<K> line; // one face with three distinct collinear corners: no surface at all
+  line.add_face(line.add_vertex(P(0, 0, 0)), line.add_vertex(P(1, 1, 1)), line.add_vertex(P(2, 2, 2)));
+  BS_CHECK(throws_invalid_argument([&] { BS::Range_scan_simulator<Mesh<K>> s(line); }),
+           "a mesh of collinear faces only accepted");
   report("bad_cameras<" + kernel_name<K>() + ">", before);
+}
+
+// A face with collinear corners is not scanned: with one added to the
+// square, every sample still lies on the square, and the same pixels hit.
+template <class K>
+void test_degenerate_faces()
+{
+  const int before = failures();
+  typedef typename K::Point_3 P;
+  typedef typename K::Vector_3 V;
+  const Mesh<K> square = make_square<K>();
+  Mesh<K> with_sliver = square;
+  with_sliver.add_face(with_sliver.add_vertex(P(-0.5, -0.5, 0.25)), with_sliver.add_vertex(P(0, 0, 0.5)),
+                       with_sliver.add_vertex(P(0.5, 0.5, 0.75)));
+  const Distance_tree<K> tree(square);
+  for(const auto& eye_up : {std::make_pair(P(0.3, 0.2, 5), V(0, 1, 0)), std::make_pair(P(3, -2, 4), V(0, 0, 1)),
+                            std::make_pair(P(-4, 0.1, 1), V(0, 0, 1))})
+  {
+    const P eye = eye_up.first;
+    const auto camera = BS::Camera<K>::perspective(eye, P(0, 0, 0), eye_up.second, 40., 48, 48);
+    const auto plain = BS::simulate_range_scan(square, camera);
+    const auto samples = BS::simulate_range_scan(with_sliver, camera);
+    double worst = 0.;
+    for(const auto& s : samples)
+      worst = (std::max)(worst, tree.distance(s.point));
+    BS_CHECK(samples.size() == plain.size() && !samples.empty(),
+             "eye " << eye << ": " << samples.size() << " samples with the collinear face, " << plain.size() << " without");
+    BS_CHECK(worst < 1e-12, "eye " << eye << ": a sample lies " << worst << " off the square");
+  }
+  report("degenerate_faces<" + kernel_name<K>() + ">", before);
 }
 
 // ---------------------------------------------------------------- writing
@@ -634,6 +671,38 @@ void test_writers(const Temp_dir& dir)
   }
   BS_CHECK(rethrown, "the writer's exception was not rethrown");
   BS_CHECK(dir.number_of_files() == files, "a failed write left a file behind");
+  // A symbolic link is written through: its target gets the text, the link
+  // stays a link. A directory is refused; a device is written in place.
+  {
+    namespace fs = std::filesystem;
+    const fs::path target = dir / "link_target.txt", link = dir / "link.txt";
+    std::error_code ec;
+    fs::remove(link, ec);
+    fs::create_symlink(target.filename(), link); // relative, as `ln -s` makes it
+    BS::internal::write_file_atomically(link.string(), [](std::ostream& out) { out << "through\n"; });
+    std::ifstream in(target);
+    std::string text;
+    std::getline(in, text);
+    BS_CHECK(fs::is_symlink(fs::symlink_status(link)), "the symbolic link was replaced by a file");
+    BS_CHECK(text == "through", "the link's target holds '" << text << "'");
+    bool refused = false;
+    try
+    {
+      BS::internal::write_file_atomically(dir.path.string(), [](std::ostream& out) { out << 1; });
+    }
+    catch(const std::runtime_error& e)
+    {
+      refused = std::string(e.what()).find("is a directory") != std::string::npos;
+    }
+    BS_CHECK(refused, "a directory as output file was not refused with a clear message");
+    if(fs::exists("/dev/null"))
+    {
+      BS::internal::write_file_atomically("/dev/null", [](std::ostream& out) { out << "nothing\n"; });
+      BS_CHECK(fs::is_character_file("/dev/null"), "writing /dev/null replaced the device");
+    }
+    fs::remove(link, ec);
+    fs::remove(target, ec);
+  }
   report("writers<" + kernel_name<K>() + ">", before);
 }
 
@@ -861,8 +930,23 @@ void test_tools(const Temp_dir& dir)
   }
   // Only the mesh and the garbage file: no temporary left anywhere.
   BS_CHECK(dir.number_of_files() == 2, "the failed runs left " << dir.number_of_files() - 2 << " files");
+  // An output that is the input, refused before anything is read or written.
+  const std::string mesh_ply = dir / "copy.ply";
+  BS_CHECK(run(make + " box_cylinder --segments 8 -o " + quote(mesh_ply), dir, &err) == 0, "a PLY mesh: " << err);
+  const auto size_before = fs::file_size(mesh_ply);
+  BS_CHECK(run(scan + " " + quote(mesh_ply) + " -o " + quote(mesh_ply), dir, &err) == 2 &&
+             err.find("same file") != std::string::npos,
+           "blended_scan with its input as output: " << err);
+  BS_CHECK(fs::file_size(mesh_ply) == size_before, "blended_scan overwrote its input");
+  fs::remove(mesh_ply);
 
   // Good runs: a readable .xyz, a .ply with normals, every object name.
+  BS_CHECK(run(scan + " " + quote(mesh) + " -o " + quote(out) + " --width 60 --height 50 --noise 0.001 --seed 5", dir,
+               &err) == 0,
+           "good scan failed: " << err);
+  // a subnormal noise is a (tiny) number, not an error
+  BS_CHECK(run(scan + " " + quote(mesh) + " -o " + quote(out) + " --width 20 --height 20 --noise 1e-320", dir, &err) == 0,
+           "--noise 1e-320: " << err);
   BS_CHECK(run(scan + " " + quote(mesh) + " -o " + quote(out) + " --width 60 --height 50 --noise 0.001 --seed 5", dir,
                &err) == 0,
            "good scan failed: " << err);
@@ -942,6 +1026,8 @@ int main()
   test_default_camera<EPICK>();
   test_bad_cameras<SC>();
   test_bad_cameras<EPICK>();
+  test_degenerate_faces<SC>();
+  test_degenerate_faces<EPICK>();
   {
     Temp_dir dir("blended_test_scanning");
     test_writers<SC>(dir);

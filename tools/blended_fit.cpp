@@ -292,7 +292,7 @@ int main(int argc, char** argv)
       {
         const std::optional<BS::Split_source> source = BS::split_source_from_name(o.value);
         if(!source)
-          throw tools::Usage_error("--splits must be forces, creases or both, not '" + o.value + "'");
+          throw tools::Usage_error("--splits must be forces, creases, both or branches, not '" + o.value + "'");
         split_source = *source;
       }
       else if(a == "--area-weight")
@@ -330,6 +330,9 @@ int main(int argc, char** argv)
       throw tools::Usage_error("--no-split and --max-parts " + std::to_string(max_parts) + " contradict; give one");
     if(no_split)
       max_parts = 1;
+    tools::check_files({{"input", input}, {"--reference", reference_file}},
+                       {{"--json", json}, {"--mesh", mesh}, {"--hierarchy", hierarchy}, {"--model", model_file},
+                        {"--strays", strays}});
 
     // (the reference first: a mesh it cannot read ends the run before the points are read)
     std::optional<CGAL::Surface_mesh<K::Point_3>> reference;
@@ -381,33 +384,34 @@ int main(int argc, char** argv)
                 << 100. * result.metrics.rms_over_bbox_diagonal << " % of the diagonal), "
                 << result.metrics.seconds << " s\n";
 
-    // Everything is formatted before anything is written: no half outputs.
+    // Everything is formatted before anything is written, and a failed
+    // write removes the outputs written before it: no half outputs.
     const std::string summary = summary_text(result, input, points.size(), no_split, max_parts, split_source);
-    if(!mesh.empty())
-    {
-      const auto pieces = pieces_of(result.model);
-      if(tools::extension_of(mesh) == "ply")
-        BS::write_blended_shape_pieces_ply(mesh, pieces);
-      else
-        BS::write_unified_mesh_off(mesh, pieces.merged_mesh());
-    }
-    if(!hierarchy.empty())
-      BS::internal::write_file_atomically(hierarchy, [&](std::ostream& o) {
-        BS::write_blending_hierarchy_dot(o, result.model.shape());
-      });
-    if(!strays.empty())
-      BS::internal::write_file_atomically(strays, [&](std::ostream& o) {
-        for(std::size_t i : result.stray_points) o << i << '\n';
-      });
+    std::ostringstream model_text;
     if(!model_file.empty())
-    {
-      std::ostringstream text;
-      BS::internal::write_json(text, model_json(result.model));
-      BS::internal::write_file_atomically(model_file, [&](std::ostream& o) { o << text.str(); });
-    }
-    if(json.empty())
-      std::cout << summary << std::flush;
-    else
-      BS::internal::write_file_atomically(json, [&](std::ostream& o) { o << summary; });
+      BS::internal::write_json(model_text, model_json(result.model));
+    tools::write_all_or_none({
+      {mesh, [&] {
+         const auto pieces = pieces_of(result.model);
+         if(tools::extension_of(mesh) == "ply")
+           BS::write_blended_shape_pieces_ply(mesh, pieces);
+         else
+           BS::write_unified_mesh_off(mesh, pieces.merged_mesh());
+       }},
+      {hierarchy, [&] {
+         BS::internal::write_file_atomically(hierarchy, [&](std::ostream& o) {
+           BS::write_blending_hierarchy_dot(o, result.model.shape());
+         });
+       }},
+      {strays, [&] {
+         BS::internal::write_file_atomically(strays, [&](std::ostream& o) {
+           for(std::size_t i : result.stray_points) o << i << '\n';
+         });
+       }},
+      {model_file, [&] { BS::internal::write_file_atomically(model_file, [&](std::ostream& o) { o << model_text.str(); }); }},
+      {json, [&] { BS::internal::write_file_atomically(json, [&](std::ostream& o) { o << summary; }); }}});
+    if(json.empty() && !(std::cout << summary << std::flush))
+      throw std::runtime_error("writing the summary to standard output failed (closed, or the disk is full); "
+                               "give --json FILE");
   });
 }

@@ -190,6 +190,7 @@ void make_object(const cl::Command_line& line)
   const std::string ext = cl::extension_of(output);
   if(ext != "off" && ext != "obj" && ext != "ply" && ext != "stl")
     throw cl::Usage_error("output '" + output + "' must end in .off, .obj, .ply or .stl");
+  cl::check_files({}, {{"-o", output}});
 
   const BS::CAD_mesh mesh = build(name, flags); // usage errors in values surface here too
 

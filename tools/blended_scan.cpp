@@ -103,6 +103,7 @@ void scan(const cl::Command_line& line)
   const std::string ext = cl::extension_of(output);
   if(ext != "xyz" && ext != "ply")
     throw cl::Usage_error("output '" + output + "' must end in .xyz or .ply");
+  cl::check_files({{"input", input}}, {{"-o", output}});
 
   Mesh mesh;
   BS::read_triangle_mesh(input, mesh);

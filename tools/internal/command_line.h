@@ -9,6 +9,8 @@
 #ifndef BLENDED_SHAPE_TOOLS_INTERNAL_COMMAND_LINE_H
 #define BLENDED_SHAPE_TOOLS_INTERNAL_COMMAND_LINE_H
 
+#include <CGAL/Blended_shape/internal/write_file_atomically.h>
+
 #include <boost/program_options.hpp>
 
 #include <algorithm>
@@ -20,10 +22,15 @@
 #include <cstdint>
 #include <cstdlib>
 #include <exception>
+#include <filesystem>
+#include <fstream>
+#include <functional>
 #include <iostream>
 #include <new>
 #include <stdexcept>
 #include <string>
+#include <system_error>
+#include <utility>
 #include <vector>
 
 namespace blended_shape_tools {
@@ -106,14 +113,17 @@ inline Command_line parse_command_line(int argc, char** argv, const boost::progr
 /// A finite number, the whole text.
 inline double parse_number(const std::string& flag, const std::string& text)
 {
-  if(text.empty() || std::isspace(static_cast<unsigned char>(text[0])))
+  // (decimal only: strtod() would also read hexadecimal, "0x10")
+  if(text.empty() || std::isspace(static_cast<unsigned char>(text[0])) ||
+     text.find_first_of("xX") != std::string::npos)
     throw Usage_error(flag + ": '" + text + "' is not a number");
   errno = 0;
   char* end = nullptr;
   const double x = std::strtod(text.c_str(), &end);
   if(end != text.c_str() + text.size())
     throw Usage_error(flag + ": '" + text + "' is not a number");
-  if(errno == ERANGE || !std::isfinite(x))
+  // (ERANGE also flags a tiny value rounded to a subnormal or to 0: a number all the same)
+  if((errno == ERANGE && std::abs(x) == HUGE_VAL) || !std::isfinite(x))
     throw Usage_error(flag + ": '" + text + "' is not a finite number");
   return x;
 }
@@ -182,22 +192,125 @@ inline std::string extension_of(const std::string& filename)
   return ext;
 }
 
+/// A file a tool reads or writes, and the flag that named it ("input" for
+/// the operand). An empty path is an output not asked for.
+struct Named_file
+{
+  std::string flag, path;
+};
+
+namespace internal {
+
+// Whether `a` and `b` name the same file: the same file on disk, or, where
+// either is yet to be made, the same path once the links are followed.
+inline bool same_file(const std::filesystem::path& a, const std::filesystem::path& b)
+{
+  namespace fs = std::filesystem;
+  std::error_code ec, ec2;
+  if(fs::exists(a, ec) && fs::exists(b, ec2))
+    return fs::equivalent(a, b, ec);
+  const fs::path ca = fs::weakly_canonical(a, ec), cb = fs::weakly_canonical(b, ec2);
+  return !ec && !ec2 && ca == cb;
+}
+
+} // namespace internal
+
+/// Before any work, so that a long run does not end in an error it could
+/// have given at once: no output is the same file as an input or another
+/// output (a Usage_error: the run would overwrite it), and each output can be
+/// made: it is not a directory, and its directory exists and takes a new
+/// file (std::runtime_error otherwise). Devices and pipes (`/dev/null`)
+/// are taken as they are.
+inline void check_files(const std::vector<Named_file>& inputs, const std::vector<Named_file>& outputs)
+{
+  namespace fs = std::filesystem;
+  std::vector<std::pair<Named_file, fs::path>> seen; // regular files or files to make, links followed
+  for(const std::vector<Named_file>* group : {&inputs, &outputs})
+    for(const Named_file& f : *group)
+    {
+      if(f.path.empty())
+        continue;
+      std::error_code ec;
+      const fs::file_status status = fs::status(f.path, ec); // (through the links)
+      const bool output = group == &outputs;
+      if(output && fs::is_directory(status))
+        throw Usage_error(f.flag + ": '" + f.path + "' is a directory; give the name of a file to write");
+      if(fs::exists(status) && !fs::is_regular_file(status))
+        continue;
+      const fs::path target = CGAL::Blended_shapes::internal::final_target_of(f.path);
+      if(output) // (two inputs may be one file: a mesh fitted with itself as the reference)
+        for(const auto& earlier : seen)
+          if(internal::same_file(earlier.second, target))
+            throw Usage_error(f.flag + " '" + f.path + "' is the same file as " + earlier.first.flag + " '" +
+                              earlier.first.path + "', which it would overwrite; give another file name");
+      seen.emplace_back(f, target);
+      if(!output)
+        continue;
+      const fs::path directory = target.has_parent_path() ? target.parent_path() : fs::path(".");
+      if(!fs::is_directory(directory, ec))
+        throw std::runtime_error(f.flag + ": the directory '" + directory.string() + "' of '" + f.path +
+                                 "' does not exist; create it first");
+      const std::string probe = CGAL::Blended_shapes::internal::temporary_name_for(target.string());
+      const bool created = bool(std::ofstream(probe));
+      fs::remove(probe, ec);
+      if(!created)
+        throw std::runtime_error(f.flag + ": cannot create a file in '" + directory.string() +
+                                 "'; check its permissions, or write '" + target.filename().string() + "' elsewhere");
+    }
+}
+
+/// Writes the outputs in turn (each pair: its path, "" if not asked for, and
+/// the call that writes it). If one fails, the files written before it are
+/// removed, so that a failed run leaves none of its outputs, and the error
+/// is rethrown.
+inline void write_all_or_none(const std::vector<std::pair<std::string, std::function<void()>>>& outputs)
+{
+  namespace fs = std::filesystem;
+  std::vector<fs::path> written;
+  try
+  {
+    for(const auto& o : outputs)
+      if(!o.first.empty())
+      {
+        o.second();
+        written.push_back(CGAL::Blended_shapes::internal::final_target_of(o.first));
+      }
+  }
+  catch(...)
+  {
+    for(const fs::path& p : written)
+    {
+      std::error_code ec;
+      if(fs::is_regular_file(fs::symlink_status(p, ec)))
+        fs::remove(p, ec);
+    }
+    throw;
+  }
+}
+
 /// Runs `body(command_line)` with the conventions above, the command line
 /// split by `options` (see known_options()); returns the exit code.
 template <class Body>
 int run_tool(const char* tool, const std::string& usage, int argc, char** argv,
              const boost::program_options::options_description& options, Body&& body)
 {
+  // What went to standard output (the usage, a summary) must have arrived.
+  const auto stdout_written = [tool] {
+    if(std::cout.flush())
+      return 0;
+    std::cerr << tool << ": writing to standard output failed (closed, or the disk is full)" << std::endl;
+    return 1;
+  };
   for(int i = 1; i < argc; ++i)
     if(std::string(argv[i]) == "--help" || std::string(argv[i]) == "-h")
     {
       std::cout << usage;
-      return 0;
+      return stdout_written();
     }
   try
   {
     body(parse_command_line(argc, argv, options));
-    return 0;
+    return stdout_written();
   }
   catch(const Usage_error& e)
   {

@@ -28,49 +28,80 @@ inline std::string temporary_name_for(const std::string& filename)
   return s.str();
 }
 
+// Where writing `filename` lands: a symbolic link is followed (to its
+// target, even a dangling one), so that the link stays a link.
+inline std::filesystem::path final_target_of(const std::string& filename)
+{
+  namespace fs = std::filesystem;
+  fs::path p(filename);
+  std::error_code ec;
+  for(int hops = 0; hops < 40 && fs::is_symlink(fs::symlink_status(p, ec)); ++hops)
+  {
+    const fs::path to = fs::read_symlink(p, ec);
+    if(ec)
+      break;
+    p = to.is_absolute() ? to : p.parent_path() / to;
+  }
+  return p;
+}
+
+// Calls `write(out)` on `out`, opened on `path`; throws with `filename` in
+// the message if the stream cannot be opened or fails.
+template <class Writer>
+void write_stream_to(const std::string& path, const std::string& filename, Writer&& write)
+{
+  std::ofstream out(path, std::ios::out | std::ios::trunc);
+  if(!out)
+    throw std::runtime_error("cannot create '" + path + "' to write '" + filename +
+                             "': check that the directory exists and is writable");
+  write(static_cast<std::ostream&>(out));
+  out.flush();
+  const bool ok = bool(out);
+  out.close();
+  if(!ok || out.fail())
+    throw std::runtime_error("writing '" + filename + "' failed (disk full or I/O error)");
+}
+
 /// Calls `write(std::ostream&)` on a temporary file beside `filename`, then
 /// renames it to `filename`: readers never see a half-written file, and a
 /// failure (an exception from `write`, a full disk) leaves no file behind.
-/// \throws std::runtime_error if the file cannot be created, written or renamed;
+/// A symbolic link is written through (its target is replaced, the link
+/// stays); a device or a pipe (`/dev/stdout`) is written directly.
+/// \throws std::invalid_argument if `filename` is empty.
+/// \throws std::runtime_error if `filename` is a directory, or the file cannot be created, written or renamed;
 ///         rethrows what `write` throws.
 template <class Writer>
 void write_file_atomically(const std::string& filename, Writer&& write)
 {
+  namespace fs = std::filesystem;
   if(filename.empty())
     throw std::invalid_argument("write_file_atomically: empty output file name; give a path");
-
-  const std::string tmp = temporary_name_for(filename);
   std::error_code ignored;
+  const fs::file_status status = fs::status(filename, ignored); // (through the links)
+  if(fs::is_directory(status))
+    throw std::runtime_error("'" + filename + "' is a directory; give the name of a file to write");
+  if(fs::exists(status) && !fs::is_regular_file(status))
   {
-    std::ofstream out(tmp, std::ios::out | std::ios::trunc);
-    if(!out)
-      throw std::runtime_error("cannot create '" + tmp + "' to write '" + filename +
-                               "': check that the directory exists and is writable");
-    try
-    {
-      write(static_cast<std::ostream&>(out));
-      out.flush();
-    }
-    catch(...)
-    {
-      out.close();
-      std::filesystem::remove(tmp, ignored);
-      throw;
-    }
-    const bool ok = bool(out);
-    out.close();
-    if(!ok || out.fail())
-    {
-      std::filesystem::remove(tmp, ignored);
-      throw std::runtime_error("writing '" + filename +
-                               "' failed (disk full or I/O error); nothing was written");
-    }
+    write_stream_to(filename, filename, write); // nothing to rename onto a device or a pipe
+    return;
+  }
+  const fs::path target = final_target_of(filename);
+
+  const std::string tmp = temporary_name_for(target.string());
+  try
+  {
+    write_stream_to(tmp, filename, write);
+  }
+  catch(...)
+  {
+    fs::remove(tmp, ignored);
+    throw;
   }
   std::error_code ec;
-  std::filesystem::rename(tmp, filename, ec);
+  fs::rename(tmp, target, ec);
   if(ec)
   {
-    std::filesystem::remove(tmp, ignored);
+    fs::remove(tmp, ignored);
     throw std::runtime_error("cannot rename '" + tmp + "' to '" + filename + "': " + ec.message());
   }
 }
