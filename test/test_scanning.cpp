@@ -536,6 +536,7 @@ void test_bad_cameras()
   c = good; c.eye = P(nan, 0, 0); bad.emplace_back("NaN eye", c);
   c = good; c.target = P(0, inf, 0); bad.emplace_back("infinite target", c);
   c = good; c.up = V(0, 0, nan); bad.emplace_back("NaN up", c);
+  c = good; c.eye = P(1e200, 0, 0); bad.emplace_back("eye beyond 1e150", c); // (its distance overflows)
   c = C::orthographic(P(3, 0, 0), P(0, 0, 0), V(0, 0, 1), 0., 20, 20); bad.emplace_back("view height 0", c);
   c = C::orthographic(P(3, 0, 0), P(0, 0, 0), V(0, 0, 1), -1., 20, 20); bad.emplace_back("view height -1", c);
   c = C::orthographic(P(3, 0, 0), P(0, 0, 0), V(0, 0, 1), inf, 20, 20); bad.emplace_back("view height inf", c);
@@ -569,6 +570,11 @@ void test_bad_cameras()
   quad.add_face(quad.add_vertex(P(0, 0, 0)), quad.add_vertex(P(1, 0, 0)), quad.add_vertex(P(1, 1, 0)),
                 quad.add_vertex(P(0, 1, 0)));
   BS_CHECK(throws_invalid_argument([&] { BS::Range_scan_simulator<Mesh<K>> s(quad); }), "quad mesh accepted");
+  Mesh<K> far_out = sphere; // where squared distances overflow
+  for(auto v : far_out.vertices())
+    far_out.point(v) = P(1e155 * far_out.point(v).x(), far_out.point(v).y(), far_out.point(v).z());
+  BS_CHECK(throws_invalid_argument([&] { BS::Range_scan_simulator<Mesh<K>> s(far_out); }), "a mesh at 1e155 accepted");
+  BS_CHECK(throws_invalid_argument([&] { BS::default_camera_for(far_out); }), "default camera of a mesh at 1e155");
   Mesh<K> line; // one face with three distinct collinear corners: no surface at all
   line.add_face(line.add_vertex(P(0, 0, 0)), line.add_vertex(P(1, 1, 1)), line.add_vertex(P(2, 2, 2)));
   BS_CHECK(throws_invalid_argument([&] { BS::Range_scan_simulator<Mesh<K>> s(line); }),

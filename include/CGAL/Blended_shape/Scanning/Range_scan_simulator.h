@@ -2,6 +2,7 @@
 #ifndef CGAL_BLENDED_SHAPE_SCANNING_RANGE_SCAN_SIMULATOR_H
 #define CGAL_BLENDED_SHAPE_SCANNING_RANGE_SCAN_SIMULATOR_H
 
+#include <CGAL/Blended_shape/IO/Input_error.h>
 #include <CGAL/Blended_shape/internal/write_file_atomically.h>
 
 #include <CGAL/AABB_face_graph_triangle_primitive.h>
@@ -99,7 +100,8 @@ struct Camera
     return c;
   }
 
-  /// \throws std::invalid_argument saying what is wrong: non-finite numbers,
+  /// \throws std::invalid_argument saying what is wrong: numbers that are not finite
+  /// or beyond `maximum_coordinate_magnitude`,
   /// `eye == target`, `up` null or parallel to the view direction, a field of
   /// view outside (0, 180) degrees, a non-positive view height, zero pixels or
   /// more than `maximum_number_of_pixels`.
@@ -170,6 +172,13 @@ inline bool is_finite(const Vec3& a)
 {
   return std::isfinite(a.x) && std::isfinite(a.y) && std::isfinite(a.z);
 }
+// Finite, and small enough that squared distances do not overflow (the
+// limit of the points, maximum_coordinate_magnitude).
+inline bool in_range(const Vec3& a)
+{
+  return std::abs(a.x) <= maximum_coordinate_magnitude && std::abs(a.y) <= maximum_coordinate_magnitude &&
+         std::abs(a.z) <= maximum_coordinate_magnitude;
+}
 
 template <class P>
 Vec3 to_vec3(const P& p)
@@ -181,6 +190,15 @@ inline std::string to_string(const Vec3& a)
 {
   std::ostringstream s;
   s << '(' << a.x << ", " << a.y << ", " << a.z << ')';
+  return s.str();
+}
+
+inline std::string out_of_range_vertex_message(const std::string& who)
+{
+  std::ostringstream s;
+  s << who << ": the mesh has a vertex with a coordinate that is not finite or beyond "
+    << maximum_coordinate_magnitude << " in absolute value, where squared distances overflow; "
+    << "fix the mesh, or express it in a larger unit";
   return s.str();
 }
 
@@ -199,9 +217,14 @@ Camera_frame camera_frame(const Camera<GeomTraits>& c)
   auto fail = [](const std::string& what) {
     throw std::invalid_argument("Camera: " + what);
   };
-  if(!is_finite(eye) || !is_finite(target) || !is_finite(up))
+  if(!in_range(eye) || !in_range(target) || !in_range(up))
+  {
+    std::ostringstream limit;
+    limit << maximum_coordinate_magnitude;
     fail("eye " + to_string(eye) + ", target " + to_string(target) + " or up " + to_string(up) +
-         " has a non-finite coordinate; give finite numbers");
+         " has a coordinate that is not finite or beyond " + limit.str() +
+         " in absolute value, where squared distances overflow; give finite numbers at most " + limit.str());
+  }
   const Vec3 view = target - eye;
   const double distance = norm(view);
   if(!(distance > 0.))
@@ -317,7 +340,8 @@ private:
 public:
   /// Faces with collinear corners (no area) are not scanned.
   /// \throws std::invalid_argument if the mesh has no face, a non-triangle
-  /// face, a non-finite vertex coordinate, or only faces with collinear corners.
+  /// face, a vertex coordinate that is not finite or beyond
+  /// `maximum_coordinate_magnitude`, or only faces with collinear corners.
   explicit Range_scan_simulator(const TriangleMesh& mesh)
     : m_mesh(mesh)
   {
@@ -329,9 +353,8 @@ public:
         "Range_scan_simulator: the mesh has non-triangle faces; triangulate it first "
         "(CGAL::Polygon_mesh_processing::triangulate_faces)");
     for(auto v : vertices(mesh))
-      if(!internal::is_finite(internal::to_vec3(get(vertex_point, mesh, v))))
-        throw std::invalid_argument(
-          "Range_scan_simulator: the mesh has a vertex with a non-finite coordinate; fix the mesh");
+      if(!internal::in_range(internal::to_vec3(get(vertex_point, mesh, v))))
+        throw std::invalid_argument(internal::out_of_range_vertex_message("Range_scan_simulator"));
     // A face with collinear corners has no area and no plane: a ray cannot
     // see it (the faces around it cover what it spans), and intersecting a
     // ray with it is undefined (CGAL's precondition), so it is left out.
@@ -497,8 +520,8 @@ A single perspective view of the whole mesh: the eye looks at the centre of
 the bounding box from the direction (1, 0.6, 0.8), at the distance where the
 box's bounding sphere just fits a 40 degree field of view; z is up; 200 x 200 pixels.
 
-\throws std::invalid_argument if the mesh has no vertex, a non-finite
-coordinate, or all its vertices at one point.
+\throws std::invalid_argument if the mesh has no vertex, a coordinate that is not
+finite or beyond `maximum_coordinate_magnitude`, or all its vertices at one point.
 */
 template <class TriangleMesh>
 Camera<typename Kernel_traits<typename boost::property_traits<
@@ -515,9 +538,8 @@ default_camera_for(const TriangleMesh& mesh)
   for(auto v : vertices(mesh))
   {
     const internal::Vec3 p = internal::to_vec3(get(vertex_point, mesh, v));
-    if(!internal::is_finite(p))
-      throw std::invalid_argument(
-        "default_camera_for: the mesh has a vertex with a non-finite coordinate; fix the mesh");
+    if(!internal::in_range(p))
+      throw std::invalid_argument(internal::out_of_range_vertex_message("default_camera_for"));
     lo = {(std::min)(lo.x, p.x), (std::min)(lo.y, p.y), (std::min)(lo.z, p.z)};
     hi = {(std::max)(hi.x, p.x), (std::max)(hi.y, p.y), (std::max)(hi.z, p.z)};
   }
