@@ -269,6 +269,15 @@ void test_failed_writes(const Temp_dir& dir)
              "blended_fit" << args << " >/dev/full: exit " << WEXITSTATUS(status) << ", message '" << message << "'");
   }
   std::filesystem::remove(err_file);
+  // More threads than the machine runs: the same fit, and TBB has nothing to warn about.
+  std::string many, one;
+  BS_CHECK(run(quote(tool) + " " + quote(dir / "small.xyz") + " --quiet --no-split --threads 4096", dir, &err, &many) == 0 &&
+             err.empty(),
+           "--threads 4096: " << err);
+  BS_CHECK(run(quote(tool) + " " + quote(dir / "small.xyz") + " --quiet --no-split --threads 1", dir, nullptr, &one) == 0,
+           "--threads 1");
+  const auto model_of = [](const std::string& summary) { return summary.substr((std::min)(summary.find("\"model\""), summary.size())); };
+  BS_CHECK(!one.empty() && model_of(one) == model_of(many), "--threads 4096 and --threads 1 gave other models");
   blended_shape_test::report("blended_fit_failed_writes");
 }
 

@@ -116,7 +116,8 @@ struct Fitting_settings
   double maximum_running_time = HUGE_VAL;
   /// Threads of the closest-point sweeps and of the assembly of the normal
   /// equations (with TBB; without, the fit runs on one core): 0 for all
-  /// cores. The results are bit-identical whatever the number.
+  /// cores; more than TBB can run, as many as it can. The results are
+  /// bit-identical whatever the number.
   std::size_t number_of_threads = 0;
 };
 

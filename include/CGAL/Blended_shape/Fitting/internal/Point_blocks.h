@@ -6,11 +6,11 @@
 
 #ifdef CGAL_LINKED_WITH_TBB
 #include <tbb/parallel_for.h>
+#include <tbb/info.h>
 #include <tbb/task_arena.h>
 #endif
 
 #include <algorithm>
-#include <climits>
 #include <cstddef>
 #include <memory>
 #include <utility>
@@ -41,9 +41,11 @@ public:
   explicit Point_blocks(std::size_t number_of_threads = 0)
   {
 #ifdef CGAL_LINKED_WITH_TBB
+    // More threads than TBB may run would only make it warn on stderr (and
+    // the results are the same at any number): capped at its concurrency.
+    const std::size_t available = std::size_t((std::max)(1, tbb::info::default_concurrency()));
     m_arena = std::make_unique<tbb::task_arena>(
-      number_of_threads == 0 ? int(tbb::task_arena::automatic)
-                             : int((std::min)(number_of_threads, std::size_t(INT_MAX))));
+      number_of_threads == 0 ? int(tbb::task_arena::automatic) : int((std::min)(number_of_threads, available)));
 #else
     (void)number_of_threads;
 #endif
