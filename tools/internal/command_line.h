@@ -319,7 +319,9 @@ int run_tool(const char* tool, const std::string& usage, int argc, char** argv,
   }
   catch(const std::bad_alloc&)
   {
-    std::cerr << tool << ": out of memory; use a smaller input or resolution" << std::endl;
+    std::cerr << tool << ": out of memory; use a smaller input or resolution, or check that the input file is "
+                         "intact (a corrupt header or face list can claim more elements than the file holds)"
+              << std::endl;
     return 1;
   }
   catch(const std::exception& e)
