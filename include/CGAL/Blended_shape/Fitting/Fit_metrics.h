@@ -128,8 +128,8 @@ std::vector<std::array<typename Mesh::Point, 3>> mesh_triangles(const Mesh& mesh
 // (Simple_cartesian<double>), whatever the meshes' kernel. With a filtered
 // kernel, a query far from every triangle (a reference mesh placed far from
 // the points) finds its candidate distances equal within the filter's bounds
-// and falls back to exact arithmetic at every node: minutes instead of
-// milliseconds.
+// and falls back to exact arithmetic at every node (a run stopped after
+// 60 s against 4 s).
 template <class Mesh>
 double mean_distance_to(const std::vector<typename Mesh::Point>& samples, const std::vector<const Mesh*>& meshes)
 {
