@@ -318,12 +318,7 @@ public:
       const auto& p = get(point_map, item);
       all.emplace_back(CGAL::to_double(p.x()), CGAL::to_double(p.y()), CGAL::to_double(p.z()));
     }
-    std::vector<bool> isolated = internal::isolated_points(all);
-    // Where the points not isolated could not be fitted (all identical, or
-    // too few: a cloud of one repeated point and a few others), none is set
-    // aside: evolution goes on from the points the first fit was given.
-    if(!fittable_without(isolated, all))
-      isolated.assign(all.size(), false);
+    const std::vector<bool> isolated = internal::isolated_points(all);
     std::vector<Eigen::Vector3d> kept;
     for(std::size_t i = 0; i < all.size(); ++i)
       if(isolated[i])
@@ -726,25 +721,6 @@ public:
   }
 
 private:
-  // Whether the points not flagged in `isolated` pass check_points(): at
-  // least minimum_number_of_points of them, not all identical.
-  static bool fittable_without(const std::vector<bool>& isolated, const std::vector<Eigen::Vector3d>& all)
-  {
-    std::size_t count = 0;
-    bool spread = false;
-    const Eigen::Vector3d* first = nullptr;
-    for(std::size_t i = 0; i < all.size(); ++i)
-      if(!isolated[i])
-      {
-        ++count;
-        if(first == nullptr)
-          first = &all[i];
-        else if(all[i] != *first)
-          spread = true;
-      }
-    return count >= minimum_number_of_points && spread;
-  }
-
   // The current model with a gradual part for the crease segment of
   // `proposal`, made in two steps. First the base takes the shape of the
   // points outside the segment, not of both (on the box/cylinder scan,

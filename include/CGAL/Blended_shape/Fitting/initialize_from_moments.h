@@ -399,8 +399,6 @@ auto initialize_from_trimmed_moments(const PointRange& points,
   // Step 0: the isolated points cannot be kept.
   std::vector<bool> allowed = internal::isolated_points(all, 8, isolated_point_factor);
   allowed.flip();
-  if(std::size_t(std::count(allowed.begin(), allowed.end(), true)) < minimum_number_of_points)
-    allowed.assign(all.size(), true);
   const Eigen::Vector3d c = internal::geometric_median(all);
   std::vector<double> distance(all.size());
   for(std::size_t i = 0; i < all.size(); ++i) distance[i] = (all[i] - c).norm();

@@ -2,6 +2,7 @@
 #ifndef CGAL_BLENDED_SHAPE_INTERNAL_ISOLATED_POINTS_H
 #define CGAL_BLENDED_SHAPE_INTERNAL_ISOLATED_POINTS_H
 
+#include <CGAL/Blended_shape/IO/Input_error.h>
 #include <CGAL/Blended_shape/internal/point_spacing.h>
 
 #include <Eigen/Core>
@@ -21,6 +22,9 @@ namespace internal {
 // about four times). Unlike a robust fit's weights, this does not depend on
 // the model: the points of a part that the model does not reach yet are not
 // isolated, so they pull the model towards the part (sec. 5.4).
+// Where the other points could not be fitted (fewer than
+// minimum_number_of_points, or all identical: one point repeated and a few
+// others), none is isolated: every caller then goes on with all the points.
 inline std::vector<bool> isolated_points(const std::vector<Eigen::Vector3d>& points, std::size_t k = 8,
                                          double factor = 4.)
 {
@@ -29,8 +33,22 @@ inline std::vector<bool> isolated_points(const std::vector<Eigen::Vector3d>& poi
     return isolated;
   const std::vector<double> distance = kth_neighbour_distances(points, k);
   const double limit = factor * median_of(distance);
+  std::size_t kept = 0;
+  const Eigen::Vector3d* first_kept = nullptr;
+  bool spread = false;
   for(std::size_t i = 0; i < points.size(); ++i)
+  {
     isolated[i] = distance[i] > limit;
+    if(isolated[i])
+      continue;
+    ++kept;
+    if(first_kept == nullptr)
+      first_kept = &points[i];
+    else if(points[i] != *first_kept)
+      spread = true;
+  }
+  if(kept < minimum_number_of_points || !spread)
+    isolated.assign(points.size(), false);
   return isolated;
 }
 
