@@ -567,7 +567,9 @@ void test_bad_input()
   try { BS::fit_superquadric(ok, BS::parameters::settling_tolerance(std::nan(""))); } catch(const std::invalid_argument&) { ++thrown; }
   try { BS::fit_superquadric(ok, BS::parameters::area_weight(-1e-5)); } catch(const std::invalid_argument&) { ++thrown; }
   try { BS::fit_superquadric(ok, BS::parameters::area_weight(std::nan(""))); } catch(const std::invalid_argument&) { ++thrown; }
-  BS_CHECK(thrown == 9, "invalid settings accepted: " << 9 - thrown);
+  // (a negative count, as an unsigned one: a memory of 1e19 samples)
+  try { BS::fit_superquadric(ok, BS::parameters::projection_start_samples(std::size_t(-1))); } catch(const std::invalid_argument&) { ++thrown; }
+  BS_CHECK(thrown == 10, "invalid settings accepted: " << 10 - thrown);
   // A flat cloud is a documented result, never NaN.
   std::vector<Point_3> flat;
   for(int i = 0; i < 200; ++i) flat.emplace_back(i % 20, i / 20, 0.);
@@ -877,7 +879,8 @@ void test_settings_from_named_parameters()
              none.energy_tolerance == d.energy_tolerance && none.force_tolerance == d.force_tolerance &&
              none.rest_tolerance == d.rest_tolerance && none.settling_tolerance == d.settling_tolerance &&
              none.steady_iterations == d.steady_iterations && none.mesh_resolution == d.mesh_resolution &&
-             none.projection_iterations == d.projection_iterations && none.subset_size == d.subset_size &&
+             none.projection_iterations == d.projection_iterations &&
+             none.projection_start_samples == d.projection_start_samples && none.subset_size == d.subset_size &&
              none.random_seed == d.random_seed && none.rigid_first == d.rigid_first &&
              none.rigid_iterations == d.rigid_iterations && none.robust_weighting == d.robust_weighting &&
              none.maximum_size_factor == d.maximum_size_factor &&
@@ -888,16 +891,16 @@ void test_settings_from_named_parameters()
   const BS::Fitting_settings s = BS::settings_from_named_parameters(
     BSP::integrator(BS::Integrator::Explicit, BSP::energy_tolerance(1e-7, BSP::force_tolerance(1e-3,
     BSP::steady_iterations(std::size_t(3), BSP::mesh_resolution(7, BSP::projection_iterations(9,
-    BSP::subset_size(std::size_t(123), BSP::rigid_first(true, BSP::rigid_iterations(std::size_t(4),
+    BSP::projection_start_samples(std::size_t(250), BSP::subset_size(std::size_t(123), BSP::rigid_first(true, BSP::rigid_iterations(std::size_t(4),
     BSP::robust_weighting(BS::Robust_weighting::Cauchy, BSP::maximum_size_factor(2.5,
     BSP::placement_stiffness(0.5, BSP::rest_tolerance(1e-3, BSP::settling_tolerance(0.25,
-    BSP::area_weight(0.25, BSP::number_of_threads(std::size_t(3)))))))))))))))))
+    BSP::area_weight(0.25, BSP::number_of_threads(std::size_t(3))))))))))))))))))
       .number_of_iterations(std::size_t(77))
       .random_seed(5u)
       .maximum_running_time(3.));
   BS_CHECK(s.integrator == BS::Integrator::Explicit && s.maximum_iterations == 77 && s.energy_tolerance == 1e-7 &&
              s.force_tolerance == 1e-3 && s.steady_iterations == 3 && s.mesh_resolution == 7 &&
-             s.projection_iterations == 9 && s.subset_size == 123 && s.random_seed == 5 && s.rigid_first &&
+             s.projection_iterations == 9 && s.projection_start_samples == 250 && s.subset_size == 123 && s.random_seed == 5 && s.rigid_first &&
              s.rigid_iterations == 4 && s.robust_weighting == BS::Robust_weighting::Cauchy &&
              s.maximum_size_factor == 2.5 && s.placement_stiffness == 0.5 && s.maximum_running_time == 3. &&
              s.rest_tolerance == 1e-3 && s.settling_tolerance == 0.25 && s.area_weight == 0.25 &&

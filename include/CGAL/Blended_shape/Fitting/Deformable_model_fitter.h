@@ -10,6 +10,7 @@
 #include <CGAL/Blended_shape/Fitting/internal/Box_constrained_step.h>
 #include <CGAL/Blended_shape/Fitting/internal/chart_mesh_deviation_bound.h>
 #include <CGAL/Blended_shape/Fitting/internal/Point_blocks.h>
+#include <CGAL/Blended_shape/Fitting/internal/sampled_projection_starts.h>
 #include <CGAL/Blended_shape/Fitting/internal/Surface_area.h>
 #include <CGAL/Blended_shape/IO/check_points.h>
 #include <CGAL/Blended_shape/internal/Parameter_table.h>
@@ -565,6 +566,8 @@ private:
     require(s.maximum_iterations >= 1, "maximum_iterations (number_of_iterations) must be at least 1");
     require(s.steady_iterations >= 1, "steady_iterations must be at least 1");
     require(s.projection_iterations >= 1, "projection_iterations must be at least 1");
+    require(s.projection_start_samples <= 10000000,
+            "projection_start_samples must be at most 1e7 (4000 is the default; 0: the tessellation alone)");
     require(s.energy_tolerance >= 0. && std::isfinite(s.energy_tolerance),
             "energy_tolerance must be a finite number >= 0");
     require(s.force_tolerance >= 0. && std::isfinite(s.force_tolerance),
@@ -1159,6 +1162,12 @@ private:
       if(active.size() >= 8 * faces_searched)
         deviation = internal::chart_mesh_deviation_bound(m_charts, &m_kept_faces, model);
     }
+    // Without foot points to follow, a blended model's projections also
+    // start from surface samples (Fitting_settings::projection_start_samples).
+    const std::vector<Chart_point> sampled_start =
+      previous == nullptr
+        ? internal::sampled_projection_starts(model, m_points, active, m_settings.projection_start_samples)
+        : std::vector<Chart_point>();
     m_blocks.for_each_point(active.size(), [&](std::size_t k) {
       const Eigen::Vector3d& p = m_points[active[k]];
       const Point_3 query(p[0], p[1], p[2]);
@@ -1222,8 +1231,16 @@ private:
         }
       }
       else // no previous foot point, or it left the surface of a blended model
+      {
         foot = internal::refine_foot_point(model, p, projection_start(search.locate(query), model), iterations,
                                            tolerance);
+        if(!sampled_start.empty())
+        {
+          const internal::Foot_point w = internal::refine_foot_point(model, p, sampled_start[k], iterations, tolerance);
+          if(w.squared_distance < foot.squared_distance) // ties go to the tessellation's start
+            foot = w;
+        }
+      }
       c.u[k] = foot.u;
       if(kept_previous)
       {

@@ -76,6 +76,17 @@ struct Fitting_settings
   double settling_tolerance = 1e-3;
   int mesh_resolution = 10;               ///< chart tessellation (rings from pole to equator)
   int projection_iterations = 20;         ///< at most this many Gauss-Newton steps from a start to the closest point on the surface
+  /// Where the foot points of a blended model (one with blends) are not
+  /// known yet (the fitter's first closest-point sweep, or after
+  /// set_model()), each point is projected onto the surface both from the
+  /// closest point of the chart tessellation and from the nearest of this
+  /// many points spread over the surface by area, and the closer result
+  /// wins: a blend's strip, narrow in its chart, can span a large curved
+  /// piece of surface that the tessellation misses (see the manual, Closest
+  /// Points of a Blended Model). 0: the tessellation alone. Models without
+  /// blends always use the tessellation alone. At most 1e7. The fits of
+  /// part evolution set it to 0 (see Part_evolution).
+  std::size_t projection_start_samples = 4000;
   std::size_t subset_size = 4000;         ///< points used before the all-points phase (0: all from the start)
   /// Chooses the subset (named parameter `CGAL::parameters::random_seed`).
   unsigned int random_seed = 0;
