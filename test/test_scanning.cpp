@@ -934,6 +934,11 @@ void test_tools(const Temp_dir& dir)
              c.first << ": stderr does not start with the tool name: " << err);
     BS_CHECK(!fs::exists(obj) && !fs::exists(dir / "made.xyz"), c.first << ": left an output file");
   }
+  // One row of pixels: the vertical field of view spreads a few rays over a
+  // wide angle, which the message says (it only said that no ray hit).
+  BS_CHECK(run(scan + " " + quote(mesh) + " -o " + quote(out) + " --width 200 --height 1 --fov 90", dir, &err) == 1 &&
+             err.find("is vertical") != std::string::npos && err.find("--height") != std::string::npos,
+           "blended_scan with one row of pixels: " << err);
   // Only the mesh and the garbage file: no temporary left anywhere.
   BS_CHECK(dir.number_of_files() == 2, "the failed runs left " << dir.number_of_files() - 2 << " files");
   // An output that is the input, refused before anything is read or written.

@@ -11,7 +11,10 @@
 #include <CGAL/Surface_mesh.h>
 
 #include <array>
+#include <cmath>
+#include <iomanip>
 #include <iostream>
+#include <sstream>
 #include <string>
 
 namespace {
@@ -129,10 +132,21 @@ void scan(const cl::Command_line& line)
 
   const auto samples = BS::simulate_range_scan(mesh, camera, options);
   if(samples.empty())
-    throw std::runtime_error("no ray hit the mesh '" + input +
-                             "' (" + std::to_string(camera.width * camera.height) +
-                             " pixels); aim the camera at the object with --eye and --target, "
-                             "or lower --dropout");
+  {
+    std::ostringstream what;
+    what << "no ray hit the mesh '" << input << "' (" << camera.width << " x " << camera.height << " pixels";
+    if(camera.projection == BS::Projection::Perspective)
+    {
+      // The field of view is vertical: few rows make a coarse, wide image.
+      const double half = std::tan(0.5 * camera.field_of_view_degrees * CGAL_PI / 180.);
+      const double pixel = 2. * half / double(camera.height);
+      what << "; the field of view, " << camera.field_of_view_degrees << " degrees, is vertical: one ray every "
+           << std::fixed << std::setprecision(1) << std::atan(pixel) * 180. / CGAL_PI << " degrees at the centre, "
+           << 2. * std::atan(0.5 * double(camera.width) * pixel) * 180. / CGAL_PI << " degrees across";
+    }
+    what << "); aim the camera at the object with --eye and --target, use more rows (--height), or lower --dropout";
+    throw std::runtime_error(what.str());
+  }
   BS::write_range_scan(output, samples, normals);
   std::cout << tool << ": wrote " << samples.size() << " points to " << output << std::endl;
 }
