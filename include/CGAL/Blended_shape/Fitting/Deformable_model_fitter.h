@@ -1234,10 +1234,11 @@ private:
       {
         foot = internal::refine_foot_point(model, p, projection_start(search.locate(query), model), iterations,
                                            tolerance);
-        if(!sampled_start.empty())
+        const std::size_t starts = sampled_start.size() / active.size(); // per point
+        for(std::size_t j = k * starts; j < (k + 1) * starts; ++j)
         {
-          const internal::Foot_point w = internal::refine_foot_point(model, p, sampled_start[k], iterations, tolerance);
-          if(w.squared_distance < foot.squared_distance) // ties go to the tessellation's start
+          const internal::Foot_point w = internal::refine_foot_point(model, p, sampled_start[j], iterations, tolerance);
+          if(w.squared_distance < foot.squared_distance) // ties go to the earlier start
             foot = w;
         }
       }

@@ -78,10 +78,10 @@ struct Fitting_settings
   int projection_iterations = 20;         ///< at most this many Gauss-Newton steps from a start to the closest point on the surface
   /// Where the foot points of a blended model (one with blends) are not
   /// known yet (the fitter's first closest-point sweep, or after
-  /// set_model()), each point is projected onto the surface both from the
-  /// closest point of the chart tessellation and from the nearest of this
-  /// many points spread over the surface by area, and the closer result
-  /// wins: a blend's strip, narrow in its chart, can span a large curved
+  /// set_model()), each point is projected onto the surface from the
+  /// closest point of the chart tessellation and from each of its 4 nearest
+  /// of this many points spread over the surface by area, and the closest
+  /// result wins: a blend's strip, narrow in its chart, can span a large curved
   /// piece of surface that the tessellation misses (see the manual, Closest
   /// Points of a Blended Model). 0: the tessellation alone. Models without
   /// blends always use the tessellation alone. At most 1e7. The fits of

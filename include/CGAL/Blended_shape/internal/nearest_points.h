@@ -9,6 +9,7 @@
 #include <CGAL/property_map.h>
 #include <Eigen/Core>
 #include <boost/iterator/counting_iterator.hpp>
+#include <algorithm>
 #include <cstddef>
 #include <stdexcept>
 #include <vector>
@@ -17,12 +18,13 @@ namespace CGAL {
 namespace Blended_shapes {
 namespace internal {
 
-// For each of `queries`, the index of its nearest point among `sites` (a
-// k-d tree; ties as CGAL's search breaks them, the same at every run).
-inline std::vector<std::size_t> nearest_points(const std::vector<Eigen::Vector3d>& sites,
-                                               const std::vector<Eigen::Vector3d>& queries)
+// For each of `queries`, the indices of its min(k, sites.size()) nearest
+// points among `sites`, nearest first, one query after the other (a k-d
+// tree; ties as CGAL's search breaks them, the same at every run).
+inline std::vector<std::size_t> k_nearest_points(const std::vector<Eigen::Vector3d>& sites,
+                                                 const std::vector<Eigen::Vector3d>& queries, std::size_t k)
 {
-  if(sites.empty())
+  if(sites.empty() || k == 0)
     throw std::invalid_argument("nearest_points: no site to search");
   typedef CGAL::Simple_cartesian<double> K;
   typedef K::Point_3 Point;
@@ -38,13 +40,21 @@ inline std::vector<std::size_t> nearest_points(const std::vector<Eigen::Vector3d
                           Search::Tree::Splitter(), Traits(point_map));
   const Search::Distance distance(point_map);
   std::vector<std::size_t> nearest;
-  nearest.reserve(queries.size());
+  nearest.reserve(queries.size() * (std::min)(k, sites.size()));
   for(const Eigen::Vector3d& q : queries)
   {
-    const Search search(tree, Point(q.x(), q.y(), q.z()), 1, 0., true, distance);
-    nearest.push_back(search.begin()->first);
+    const Search search(tree, Point(q.x(), q.y(), q.z()), unsigned(k), 0., true, distance);
+    for(const auto& neighbour : search)
+      nearest.push_back(neighbour.first);
   }
   return nearest;
+}
+
+// For each of `queries`, the index of its nearest point among `sites`.
+inline std::vector<std::size_t> nearest_points(const std::vector<Eigen::Vector3d>& sites,
+                                               const std::vector<Eigen::Vector3d>& queries)
+{
+  return k_nearest_points(sites, queries, 1);
 }
 
 } // namespace internal
