@@ -25,7 +25,7 @@ inline std::vector<std::size_t> k_nearest_points(const std::vector<Eigen::Vector
                                                  const std::vector<Eigen::Vector3d>& queries, std::size_t k)
 {
   if(sites.empty() || k == 0)
-    throw std::invalid_argument("nearest_points: no site to search");
+    throw std::invalid_argument("k_nearest_points: no site to search, or k = 0");
   typedef CGAL::Simple_cartesian<double> K;
   typedef K::Point_3 Point;
   typedef CGAL::Pointer_property_map<Point>::type Point_map;
