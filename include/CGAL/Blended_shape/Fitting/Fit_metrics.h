@@ -164,15 +164,14 @@ void check_reference_mesh(const Mesh& reference, const std::string& who)
   for(auto v : vertices(reference))
   {
     const auto& p = reference.point(v);
-    for(const double x : {CGAL::to_double(p.x()), CGAL::to_double(p.y()), CGAL::to_double(p.z())})
-      if(!(std::abs(x) <= maximum_coordinate_magnitude))
-      {
-        std::ostringstream s;
-        s << who << ": reference mesh vertex " << std::size_t(v) << " (" << p << ") has a coordinate that is not finite "
-          << "or beyond " << maximum_coordinate_magnitude << " in absolute value, where squared distances overflow; "
-          << "give the reference in the points' unit and place, with finite coordinates";
-        throw std::invalid_argument(s.str());
-      }
+    if(!internal::has_coordinates_in_range(p))
+    {
+      std::ostringstream s;
+      s << who << ": reference mesh vertex " << std::size_t(v) << " (" << p << ") has a coordinate that is "
+        << internal::out_of_range_coordinate_words()
+        << "; give the reference in the points' unit and place, with finite coordinates";
+      throw std::invalid_argument(s.str());
+    }
   }
 }
 

@@ -2,7 +2,11 @@
 #ifndef CGAL_BLENDED_SHAPE_IO_INPUT_ERROR_H
 #define CGAL_BLENDED_SHAPE_IO_INPUT_ERROR_H
 
+#include <CGAL/number_utils.h>
+
+#include <cmath>
 #include <cstddef>
+#include <sstream>
 #include <stdexcept>
 #include <string>
 
@@ -87,6 +91,36 @@ the fit sum squared coordinates and distances, which must stay finite in
 double precision (the square of `1e150` is `1e300`, with room for the sums).
 */
 constexpr double maximum_coordinate_magnitude = 1e150;
+
+namespace internal {
+
+// Whether the coordinates are finite and at most maximum_coordinate_magnitude
+// in absolute value (the one test of the limit: the points, the reference
+// meshes, the scanned meshes and the camera; a NaN fails every comparison).
+inline bool are_coordinates_in_range(double x, double y, double z)
+{
+  return std::abs(x) <= maximum_coordinate_magnitude && std::abs(y) <= maximum_coordinate_magnitude &&
+         std::abs(z) <= maximum_coordinate_magnitude;
+}
+
+// The same for a point (to_double: it must also compile for kernels whose FT is not double).
+template <class Point>
+bool has_coordinates_in_range(const Point& p)
+{
+  return are_coordinates_in_range(CGAL::to_double(p.x()), CGAL::to_double(p.y()), CGAL::to_double(p.z()));
+}
+
+// The words of every refusal of such a coordinate: "not finite or beyond
+// 1e+150 in absolute value, where squared distances overflow".
+inline std::string out_of_range_coordinate_words()
+{
+  std::ostringstream s;
+  s << "not finite or beyond " << maximum_coordinate_magnitude
+    << " in absolute value, where squared distances overflow";
+  return s.str();
+}
+
+} // namespace internal
 
 /*!
 \ingroup PkgBlendedShapeIO

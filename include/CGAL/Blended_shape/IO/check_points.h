@@ -117,18 +117,18 @@ void check_points(const PointRange& points, PointMap point_map)
                         "non-finite coordinate (" + internal::point_to_string(p) +
                         "); remove or repair points with NaN or infinite coordinates before "
                         "the fit (read_points() drops them when reading a file)");
+    if(!internal::has_coordinates_in_range(p)) // (finite, checked above: too large)
+    {
+      std::ostringstream s;
+      s << "check_points: point " << i << " (counting from 0) has a coordinate beyond " << maximum_coordinate_magnitude
+        << " in absolute value (" << internal::point_to_string(p) << "), whose square overflows double "
+           "precision; express the points in a larger unit (or translate them nearer the origin) so that every "
+           "coordinate is at most " << maximum_coordinate_magnitude;
+      throw Input_error(Input_error::Scale_out_of_range, s.str());
+    }
     const double x[3] = {CGAL::to_double(p.x()), CGAL::to_double(p.y()), CGAL::to_double(p.z())};
     for(int k = 0; k < 3; ++k)
     {
-      if(std::abs(x[k]) > maximum_coordinate_magnitude)
-      {
-        std::ostringstream s;
-        s << "check_points: point " << i << " (counting from 0) has a coordinate beyond " << maximum_coordinate_magnitude
-          << " in absolute value (" << internal::point_to_string(p) << "), whose square overflows double "
-             "precision; express the points in a larger unit (or translate them nearer the origin) so that every "
-             "coordinate is at most " << maximum_coordinate_magnitude;
-        throw Input_error(Input_error::Scale_out_of_range, s.str());
-      }
       low[k] = (std::min)(low[k], x[k]);
       high[k] = (std::max)(high[k], x[k]);
     }

@@ -176,8 +176,7 @@ inline bool is_finite(const Vec3& a)
 // limit of the points, maximum_coordinate_magnitude).
 inline bool in_range(const Vec3& a)
 {
-  return std::abs(a.x) <= maximum_coordinate_magnitude && std::abs(a.y) <= maximum_coordinate_magnitude &&
-         std::abs(a.z) <= maximum_coordinate_magnitude;
+  return are_coordinates_in_range(a.x, a.y, a.z);
 }
 
 template <class P>
@@ -195,11 +194,8 @@ inline std::string to_string(const Vec3& a)
 
 inline std::string out_of_range_vertex_message(const std::string& who)
 {
-  std::ostringstream s;
-  s << who << ": the mesh has a vertex with a coordinate that is not finite or beyond "
-    << maximum_coordinate_magnitude << " in absolute value, where squared distances overflow; "
-    << "fix the mesh, or express it in a larger unit";
-  return s.str();
+  return who + ": the mesh has a vertex with a coordinate that is " + out_of_range_coordinate_words() +
+         "; fix the mesh, or express it in a larger unit";
 }
 
 // The orthonormal frame and image-plane extent of a validated camera.
@@ -222,8 +218,8 @@ Camera_frame camera_frame(const Camera<GeomTraits>& c)
     std::ostringstream limit;
     limit << maximum_coordinate_magnitude;
     fail("eye " + to_string(eye) + ", target " + to_string(target) + " or up " + to_string(up) +
-         " has a coordinate that is not finite or beyond " + limit.str() +
-         " in absolute value, where squared distances overflow; give finite numbers at most " + limit.str());
+         " has a coordinate that is " + out_of_range_coordinate_words() + "; give finite numbers at most " +
+         limit.str());
   }
   const Vec3 view = target - eye;
   const double distance = norm(view);
