@@ -24,11 +24,13 @@
 #include <CGAL/property_map.h>
 
 #include <sys/wait.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <array>
 #include <chrono>
 #include <cmath>
+#include <csignal>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -712,6 +714,51 @@ void test_writers(const Temp_dir& dir)
   report("writers<" + kernel_name<K>() + ">", before);
 }
 
+// Ended by a signal while it writes, a program that asked for it
+// (remove_partial_files_on_termination_signals(), as the tools do) leaves
+// no temporary file behind, and still dies of that signal. Without the
+// handlers the temporary stays: the check can fail.
+void test_partial_files_on_signals(const Temp_dir& dir)
+{
+  const int before = failures();
+  const std::size_t files = dir.number_of_files();
+  // the status of a child that writes and is signalled half-way
+  const auto killed_while_writing = [&](int signal_number, bool handlers) {
+    std::cout.flush();
+    std::cerr.flush();
+    const pid_t child = fork();
+    if(child == 0)
+    {
+      if(handlers)
+        BS::internal::remove_partial_files_on_termination_signals();
+      BS::internal::write_file_atomically(dir / "killed.xyz", [&](std::ostream& out) {
+        out << "1 2 3\n" << std::flush;
+        std::raise(signal_number);
+      });
+      std::_Exit(0); // not reached: the signal ends the child
+    }
+    int status = 0;
+    return (child > 0 && waitpid(child, &status, 0) == child) ? status : -1;
+  };
+  for(const int signal_number : {SIGTERM, SIGINT})
+  {
+    const int status = killed_while_writing(signal_number, true);
+    BS_CHECK(status != -1 && WIFSIGNALED(status) && WTERMSIG(status) == signal_number,
+             "signal " << signal_number << ": the writer did not die of it (status " << status << ")");
+    BS_CHECK(dir.number_of_files() == files,
+             "signal " << signal_number << " left " << dir.number_of_files() - files << " file(s) behind");
+  }
+  const int status = killed_while_writing(SIGTERM, false);
+  BS_CHECK(status != -1 && WIFSIGNALED(status), "without handlers: the writer did not die of the signal");
+  BS_CHECK(dir.number_of_files() == files + 1,
+           "without handlers the temporary file should stay (the check above could not fail): "
+             << dir.number_of_files() - files << " new files");
+  for(const auto& entry : std::filesystem::directory_iterator(dir.path))
+    if(entry.path().filename().string().find("killed.xyz.partial-") == 0)
+      std::filesystem::remove(entry.path());
+  report("partial files on signals", before);
+}
+
 // ---------------------------------------------------------------- CAD objects
 
 // Checks of its own, independent of the library's post-conditions.
@@ -1043,6 +1090,7 @@ int main()
     Temp_dir dir("blended_test_scanning");
     test_writers<SC>(dir);
     test_writers<EPICK>(dir);
+    test_partial_files_on_signals(dir);
   }
   test_cad_objects();
   test_bad_cad_parameters();

@@ -289,11 +289,13 @@ inline void write_all_or_none(const std::vector<std::pair<std::string, std::func
 }
 
 /// Runs `body(command_line)` with the conventions above, the command line
-/// split by `options` (see known_options()); returns the exit code.
+/// split by `options` (see known_options()); returns the exit code. Ended by
+/// Ctrl-C or `kill`, a tool leaves no half-written temporary file behind.
 template <class Body>
 int run_tool(const char* tool, const std::string& usage, int argc, char** argv,
              const boost::program_options::options_description& options, Body&& body)
 {
+  CGAL::Blended_shapes::internal::remove_partial_files_on_termination_signals();
   // What went to standard output (the usage, a summary) must have arrived.
   const auto stdout_written = [tool] {
     if(std::cout.flush())
