@@ -525,6 +525,15 @@ public:
   /// The resolution of the tessellations the area term measures the surface on.
   static constexpr int area_resolution = 6;
 
+  /// A fit whose root mean square distance is at most this fraction of the
+  /// diameter of the points about their centroid fits them to the precision
+  /// of the distances (on exact samples of a superquadric the fits end at
+  /// 4e-11 to 1.3e-10 of it): at rest, whatever its last steps changed. Its
+  /// energy is rounding, whose relative changes from step to step say
+  /// nothing; without this a fit of noise-free points could step on at random
+  /// until its iteration limit and call itself not converged.
+  static constexpr double exact_fit_ratio = 1e-9;
+
 private:
   // The model's bounds, with shape lengths also bounded by the data's size:
   // sizes (lengths bounded below by 0 or more) from minimum_size_ratio times
@@ -632,13 +641,15 @@ private:
   // accepted with a relative energy decrease and a scaled force under the
   // tolerances (a stationary point); or accepted with a relative energy
   // decrease under `rest_tolerance` (the creeping rest of a shape the model
-  // cannot represent, see Fitting_settings::rest_tolerance).
+  // cannot represent, see Fitting_settings::rest_tolerance); or the model
+  // fits the points exactly (exact_fit_ratio).
   bool is_at_rest(const Step_report& r) const
   {
     const double decrease = relative_decrease(r);
-    return r.stalled || (r.accepted && ((decrease <= m_settings.energy_tolerance &&
-                                         r.scaled_force <= m_settings.force_tolerance) ||
-                                        decrease <= m_settings.rest_tolerance));
+    const double exact_energy = 0.5 * double(r.points_used) * CGAL::square(exact_fit_ratio * m_diameter);
+    return r.stalled || r.energy_after <= exact_energy ||
+           (r.accepted && ((decrease <= m_settings.energy_tolerance && r.scaled_force <= m_settings.force_tolerance) ||
+                           decrease <= m_settings.rest_tolerance));
   }
   static double relative_decrease(const Step_report& r)
   {
