@@ -296,9 +296,11 @@ void test_good_run(const Temp_dir& dir)
   Json_checker summary(out);
   BS_CHECK(summary.valid(), "the summary is not valid JSON:\n" << out);
   for(const char* key : {"points", "parameters", "iterations", "iterations_on_all_points", "relative_rms",
-                         "rms_over_bbox_diagonal", "stray_points", "parts", "holes", "genus", "evolution", "seconds",
-                         "model"})
+                         "rms_over_bbox_diagonal", "stray_points", "degeneracy", "parts", "holes", "genus", "evolution",
+                         "seconds", "model"})
     BS_CHECK(summary.keys.count(key) == 1, "missing key " << key);
+  BS_CHECK(out.find("\"degeneracy\": \"none\"") != std::string::npos && err.find("note:") == std::string::npos,
+           "a superquadric's scan is flat?\n" << out);
   // The short fits that compare starts use 160 of the 800 points; the fits
   // to rest use all.
   BS_CHECK(summary.numbers["iterations_on_all_points"] > 0 &&
@@ -508,6 +510,31 @@ void test_any_scale(const Temp_dir& dir)
   blended_shape_test::report("blended_fit_any_scale");
 }
 
+// Points in a plane or on a line: the fit ends at a flat superquadric or a
+// needle (an exact "fit"), and both the summary and a note on standard
+// error (also with --quiet) say that the points were flat.
+void test_flat_points(const Temp_dir& dir)
+{
+  std::vector<K::Point_3> plane, line;
+  for(int i = 0; i < 20; ++i)
+    for(int j = 0; j < 20; ++j)
+      plane.emplace_back(0.05 * i, 0.03 * j, 0.2 + 0.01 * i - 0.02 * j); // a tilted plane
+  for(int i = 0; i < 100; ++i)
+    line.emplace_back(0.01 * i, 0.02 * i, 0.03 * i);
+  for(const auto& [name, points] : {std::make_pair("coplanar", plane), std::make_pair("collinear", line)})
+  {
+    write_points(dir / "flat.xyz", points);
+    std::string err, out;
+    const int code = run(quote(tool) + " " + quote(dir / "flat.xyz") + " --no-split --quiet", dir, &err, &out);
+    BS_CHECK(code == 0, name << ": exit " << code << ": " << err);
+    BS_CHECK(out.find(std::string("\"degeneracy\": \"") + name + "\"") != std::string::npos,
+             name << ": the summary does not say so:\n" << out);
+    BS_CHECK(err.find(std::string("note: the points are ") + name) != std::string::npos,
+             name << ": no note on standard error: " << err);
+  }
+  blended_shape_test::report("blended_fit_flat_points");
+}
+
 // The manual's copy of the usage text (its section on blended_fit) is the
 // text --help prints: a new option shows up in the manual too.
 void test_manual_usage(const Temp_dir& dir)
@@ -537,6 +564,7 @@ int main()
   test_parts_run(dir);
   test_strays(dir);
   test_any_scale(dir);
+  test_flat_points(dir);
   test_manual_usage(dir);
   blended_shape_test::report("test_blended_fit");
   return blended_shape_test::exit_code();

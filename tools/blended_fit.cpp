@@ -138,6 +138,17 @@ Json event_json(const BS::Evolution_event& e)
   return j;
 }
 
+// How flat the points are, as the first fit's initialization found them.
+const char* degeneracy_name(BS::Point_cloud_degeneracy d)
+{
+  switch(d)
+  {
+    case BS::Point_cloud_degeneracy::Coplanar: return "coplanar";
+    case BS::Point_cloud_degeneracy::Collinear: return "collinear";
+    default: return "none";
+  }
+}
+
 const char* end_of_evolution(const Result& r, bool no_split)
 {
   if(no_split) return "not run (--no-split)";
@@ -162,6 +173,7 @@ std::string summary_text(const Result& r, const std::string& input, std::size_t 
   s["rms"] = number(m.rms);
   s["rms_over_bbox_diagonal"] = number(m.rms_over_bbox_diagonal);
   s["stray_points"] = double(r.stray_points.size());
+  s["degeneracy"] = degeneracy_name(r.first_fit.initial_ellipsoid.degeneracy);
   if(m.chamfer_distance) // (with --reference)
     s["chamfer_distance"] = number(*m.chamfer_distance);
   s["parts"] = double(r.number_of_parts());
@@ -378,6 +390,15 @@ int main(int argc, char** argv)
       write_trace(trace, 0, "first_fit", BS::make_blended_model(result.first_fit.model));
       write_trace(trace, result.events.size() + 1, "final", result.model);
     }
+    // Not progress: a note on the result, also with --quiet.
+    const BS::Point_cloud_degeneracy flat = result.first_fit.initial_ellipsoid.degeneracy;
+    if(flat != BS::Point_cloud_degeneracy::None)
+      std::cerr << "blended_fit: note: the points are " << degeneracy_name(flat) << " (to 1e-6 of their extent): "
+                << (flat == BS::Point_cloud_degeneracy::Coplanar
+                      ? "the model is a flat superquadric, its thickness at the lower bound"
+                      : "the model is a needle, its two smaller semi-axes at the lower bound; no surface is "
+                        "defined by points on a line")
+                << "\n";
     if(!quiet)
       std::cerr << "blended_fit: " << result.number_of_parts() << (result.number_of_parts() == 1 ? " part" : " parts")
                 << ", genus " << result.model.shape().genus() << ", RMS " << result.metrics.rms << " ("
