@@ -776,6 +776,7 @@ void test_exact_fit_rest()
              "circle: the fit is not exact, rms/diagonal " << r.metrics.rms_over_bbox_diagonal);
     BS_CHECK(r.metrics.converged, "circle: an exact fit did not come to rest in " << r.metrics.iterations
                                                                                   << " iterations");
+    BS_CHECK(r.metrics.degeneracy == BS::Point_cloud_degeneracy::Coplanar, "circle: the metrics do not say coplanar");
   }
 }
 

@@ -173,7 +173,7 @@ std::string summary_text(const Result& r, const std::string& input, std::size_t 
   s["rms"] = number(m.rms);
   s["rms_over_bbox_diagonal"] = number(m.rms_over_bbox_diagonal);
   s["stray_points"] = double(r.stray_points.size());
-  s["degeneracy"] = degeneracy_name(r.first_fit.initial_ellipsoid.degeneracy);
+  s["degeneracy"] = degeneracy_name(m.degeneracy);
   if(m.chamfer_distance) // (with --reference)
     s["chamfer_distance"] = number(*m.chamfer_distance);
   s["parts"] = double(r.number_of_parts());
@@ -391,7 +391,7 @@ int main(int argc, char** argv)
       write_trace(trace, result.events.size() + 1, "final", result.model);
     }
     // Not progress: a note on the result, also with --quiet.
-    const BS::Point_cloud_degeneracy flat = result.first_fit.initial_ellipsoid.degeneracy;
+    const BS::Point_cloud_degeneracy flat = result.metrics.degeneracy;
     if(flat != BS::Point_cloud_degeneracy::None)
       std::cerr << "blended_fit: note: the points are " << degeneracy_name(flat) << " (to 1e-6 of their extent): "
                 << (flat == BS::Point_cloud_degeneracy::Coplanar

@@ -53,6 +53,11 @@ struct Fit_metrics
   /// over the other points, and the diagonal is theirs; number_of_points
   /// counts all.
   std::size_t number_of_stray_points = 0;
+  /// Whether the points lie in a plane or on a line (Ellipsoid_fit::degeneracy
+  /// of the initial ellipsoid the relative RMS is taken in): the fit is then
+  /// a flat superquadric or a needle, exact to rounding, not a surface the
+  /// points describe.
+  Point_cloud_degeneracy degeneracy = Point_cloud_degeneracy::None;
   double seconds = 0.;                   ///< wall time of the fit
   std::optional<double> chamfer_distance; ///< to a reference mesh, when one was given
   bool converged = false;  ///< the fit reached steady state on all points

@@ -74,6 +74,7 @@ Fit_metrics compute_fit_metrics(Fitter& fitter, const Ellipsoid_fit<GeomTraits>&
   m.iterations = status.iterations;
   m.iterations_on_all_points = status.iterations_on_all_points;
   m.relative_rms = relative_rms(inlier_residuals, initial);
+  m.degeneracy = initial.degeneracy;
   m.rms = inlier_residuals.empty() ? 0. : std::sqrt(sum / double(inlier_residuals.size()));
   const double diagonal = std::sqrt(CGAL::square(inlier_box.xmax() - inlier_box.xmin()) +
                                     CGAL::square(inlier_box.ymax() - inlier_box.ymin()) +
