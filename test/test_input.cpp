@@ -18,6 +18,7 @@
 #include <CGAL/boost/graph/helpers.h>
 #include <CGAL/property_map.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdint>
@@ -140,6 +141,38 @@ bool same_points(const std::vector<Point_3>& a, const std::vector<Point_3>& b)
     if(a[i].x() != b[i].x() || a[i].y() != b[i].y() || a[i].z() != b[i].z())
       return false;
   return true;
+}
+
+// The bytes of `value` as a binary PLY file stores it, in big- or little-endian order.
+template <class T>
+std::string ply_bytes(T value, bool big_endian)
+{
+  std::string bytes(sizeof(T), '\0');
+  std::memcpy(&bytes[0], &value, sizeof(T));
+  const std::uint16_t one = 1;
+  unsigned char first_byte;
+  std::memcpy(&first_byte, &one, 1);
+  if(big_endian == (first_byte == 1)) // the host's order is the other one
+    std::reverse(bytes.begin(), bytes.end());
+  return bytes;
+}
+
+// A binary PLY file of the points (float) with one face of vertices 0, 1, 2
+// whose list, of type `list int int`, claims `length` entries.
+template <class Point_3>
+std::string binary_ply_with_face(const std::vector<Point_3>& points, std::int32_t length, bool big_endian)
+{
+  std::string ply = std::string("ply\nformat ") + (big_endian ? "binary_big_endian" : "binary_little_endian") +
+                    " 1.0\nelement vertex " + std::to_string(points.size()) +
+                    "\nproperty float x\nproperty float y\nproperty float z\n"
+                    "element face 1\nproperty list int int vertex_indices\nend_header\n";
+  for(const Point_3& p : points)
+    for(int k = 0; k < 3; ++k)
+      ply += ply_bytes(float(CGAL::to_double(p[k])), big_endian);
+  ply += ply_bytes(length, big_endian);
+  for(std::int32_t v = 0; v < 3; ++v)
+    ply += ply_bytes(v, big_endian);
+  return ply;
 }
 
 // Reads `filename`, expecting the error `code`; also checks `points` is left empty.
@@ -373,6 +406,48 @@ void test_ply(const Temp_dir& dir, const std::string& kernel)
                              write_file(dir, "no_z.ply", header +
                                         "property float x\nproperty float y\nend_header\n1 2\n"),
                              {"no_z.ply", "lack an x, y or z"}, "PLY without z");
+
+  // Corrupt list lengths are refused before CGAL's reader allocates them
+  // (2^31 - 1 entries took it 8 GB and 38 s; a test would run out of memory).
+  {
+    std::vector<Point_3> small(cloud.begin(), cloud.begin() + 12);
+    for(Point_3& p : small) // exactly floats, to compare
+      p = Point_3(float(CGAL::to_double(p.x())), float(CGAL::to_double(p.y())), float(CGAL::to_double(p.z())));
+    for(const bool big_endian : {false, true})
+    {
+      const std::string name = big_endian ? "big.ply" : "little.ply";
+      std::vector<Point_3> points;
+      BS::read_points(write_file(dir, name, binary_ply_with_face(small, 3, big_endian)), points);
+      BS_CHECK(same_points(points, small), "binary PLY with a face, " << name);
+    }
+    expect_read_error<Point_3>(BS::Input_error::Malformed_content,
+                               write_file(dir, "long_list.ply", binary_ply_with_face(small, 2147483647, false)),
+                               {"long_list.ply", "'vertex_indices' of face 0", "claims 2147483647 entries"},
+                               "PLY list length past the file");
+    expect_read_error<Point_3>(BS::Input_error::Malformed_content,
+                               write_file(dir, "negative_list.ply", binary_ply_with_face(small, -3, true)),
+                               {"negative_list.ply", "negative length"}, "PLY negative list length");
+    std::string cut = binary_ply_with_face(small, 3, false);
+    cut.resize(cut.size() - 30); // inside the points
+    expect_read_error<Point_3>(BS::Input_error::Malformed_content, write_file(dir, "cut.ply", cut),
+                               {"cut.ply", "ends inside vertex 10", "of the 12"}, "PLY binary truncated");
+    const std::string ascii_face = "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\n"
+                                   "property float y\nproperty float z\nelement face 1\n"
+                                   "property list int int vertex_indices\nend_header\n"
+                                   "0 0 0\n1 0 0\n0 1 0\n";
+    expect_read_error<Point_3>(BS::Input_error::Malformed_content,
+                               write_file(dir, "long_ascii.ply", ascii_face + "2147483647 0 1 2\n"),
+                               {"long_ascii.ply", "claims 2147483647 entries"}, "PLY ascii list length");
+    expect_read_error<Point_3>(BS::Input_error::Malformed_content,
+                               write_file(dir, "word_ascii.ply", ascii_face + "three 0 1 2\n"),
+                               {"word_ascii.ply", "the length 'three'"}, "PLY ascii list length not a count");
+    expect_read_error<Point_3>(BS::Input_error::Malformed_content,
+                               write_file(dir, "type.ply", "ply\nformat ascii 1.0\nelement vertex 1\n"
+                                                           "property float x\nproperty float y\n"
+                                                           "property float z\nproperty quad w\nend_header\n"
+                                                           "0 0 0 0\n"),
+                               {"type.ply", "unknown type 'quad'"}, "PLY unknown type");
+  }
 
   report("read_points PLY ascii/binary (" + kernel + ")", before);
 }
@@ -622,6 +697,12 @@ void test_read_triangle_mesh(const Temp_dir& dir, const std::string& kernel)
           "write NaN mesh");
     expect_mesh_error(BS::Input_error::Non_finite_point, filename, {"nan.ply", "vertex 2 "}, "NaN vertex");
   }
+  expect_mesh_error(BS::Input_error::Malformed_content,
+                    write_file(dir, "long_list_mesh.ply",
+                               binary_ply_with_face(std::vector<Point_3>{Point_3(0, 0, 0), Point_3(1, 0, 0),
+                                                                         Point_3(0, 1, 0)},
+                                                    2147483647, true)),
+                    {"long_list_mesh.ply", "claims 2147483647 entries"}, "PLY mesh list length past the file");
 
   report("read_triangle_mesh (" + kernel + ")", before);
 }

@@ -4,6 +4,7 @@
 
 #include <CGAL/Blended_shape/IO/Input_error.h>
 #include <CGAL/Blended_shape/IO/check_points.h>
+#include <CGAL/Blended_shape/IO/internal/ply_layout.h>
 
 #include <CGAL/IO/polygon_soup_io.h>
 #include <CGAL/IO/read_ply_points.h>
@@ -111,56 +112,47 @@ inline std::uintmax_t check_readable_file(const std::string& filename, const std
   return ec ? std::uintmax_t(1) : size; // unknown size (e.g. a pipe): let the reader decide
 }
 
-// Checks the PLY header before CGAL's readers see it: a vertex whose x, y or
-// z is missing or is an integer property would make them fill zeros or fail
-// an assertion, and a file that is not PLY at all makes them print to std::cerr.
-inline void check_ply_header(const std::string& filename, const std::string& function)
+// Checks a PLY file before CGAL's readers see it (read_ply_layout(),
+// check_ply_data()): a vertex whose x, y or z is missing or is an integer
+// property would make them fill zeros or fail an assertion, a file that is
+// not PLY at all makes them print to std::cerr, and a corrupt list length
+// makes them allocate it.
+inline void check_ply_file(const std::string& filename, const std::string& function)
 {
+  const std::string where = function + ": " + quoted(filename);
   std::ifstream in(filename, std::ios::binary);
-  std::string line;
-  std::getline(in, line);
-  if(line != "ply" && line != "ply\r")
-    throw Input_error(Input_error::Malformed_content,
-                      function + ": " + quoted(filename) + " is not a PLY file (its first line is "
-                      "not 'ply'); check the file, or give it the extension of its real format");
-  bool in_vertex_element = false, has_vertex_element = false;
+  const Ply_layout layout = read_ply_layout(in, where);
+  bool has_vertex_element = false;
   int coordinates_found = 0;
   std::string bad_property;
-  while(std::getline(in, line))
+  for(const Ply_element& e : layout.elements)
   {
-    std::istringstream words(line);
-    std::string keyword;
-    words >> keyword;
-    if(keyword == "end_header")
-      break;
-    if(keyword == "element")
-    {
-      std::string name;
-      words >> name;
-      in_vertex_element = (name == "vertex" || name == "vertices");
-      has_vertex_element = has_vertex_element || in_vertex_element;
-    }
-    else if(keyword == "property" && in_vertex_element)
-    {
-      std::string type, name;
-      words >> type >> name;
-      if(name == "x" || name == "y" || name == "z")
+    if(e.name != "vertex" && e.name != "vertices")
+      continue;
+    has_vertex_element = true;
+    for(const Ply_property& p : e.properties)
+      if(p.name == "x" || p.name == "y" || p.name == "z")
       {
-        if(type == "float" || type == "float32" || type == "double" || type == "float64")
+        if(!p.is_list() && (p.type == "float" || p.type == "float32" || p.type == "double" || p.type == "float64"))
           ++coordinates_found;
         else if(bad_property.empty())
-          bad_property = name + " of type " + type;
+          bad_property = p.name + " of type " + (p.is_list() ? "list" : p.type);
       }
-    }
   }
-  if(!has_vertex_element)
-    return; // no vertices: reported later as an empty file
-  if(!bad_property.empty() || coordinates_found != 3)
+  if(has_vertex_element && (!bad_property.empty() || coordinates_found != 3))
     throw Input_error(Input_error::Malformed_content,
                       function + ": the vertices of the PLY file " + quoted(filename) +
                       (bad_property.empty() ? std::string(" lack an x, y or z property")
                                             : " have coordinate " + bad_property) +
                       "; the vertex element needs float or double properties x, y and z");
+  // (no vertices: reported later as an empty file)
+  const std::streampos data = in.tellg();
+  in.seekg(0, std::ios::end);
+  const std::streampos end = in.tellg();
+  if(data == std::streampos(-1) || end == std::streampos(-1) || end < data)
+    return; // not seekable (a pipe): CGAL's reader decides
+  in.seekg(data);
+  check_ply_data(in, std::uintmax_t(end - data), layout, where);
 }
 
 // Reads an off, obj, ply or stl file as a polygon soup. A reader failure, or a
@@ -173,7 +165,7 @@ void read_soup_or_throw(const std::string& filename, const std::string& format,
                         const std::string& function)
 {
   if(format == "ply")
-    check_ply_header(filename, function);
+    check_ply_file(filename, function);
   if(!CGAL::IO::read_polygon_soup(filename, points, polygons))
     throw Input_error(Input_error::Malformed_content,
                       function + ": " + quoted(filename) + " is not a valid " + upper_case(format) +
@@ -357,7 +349,11 @@ them for pixels without a return) and counted in
  - `Unreadable_file`: a directory, no read permission, or an I/O error;
  - `Unsupported_format`: another extension (the message lists the supported ones);
  - `Malformed_content`: the content does not parse; for text formats the
-   message gives the line number;
+   message gives the line number; a PLY file is checked whole before it is
+   read: its header (the vertices need float or double x, y, z), that its
+   data holds every element the header declares, and that no list (a
+   face's vertices) is longer than the rest of the file could hold, which
+   would otherwise make CGAL's reader allocate it;
  - `No_points`, `Too_few_points` (fewer than `minimum_number_of_points`),
    `All_points_identical`: counted after dropping non-finite points.
 
@@ -394,7 +390,7 @@ Read_report read_points(const std::string& filename, std::vector<Point_3>& point
     internal::read_text_points(filename, format == "pts", read, function);
   else if(format == "ply")
   {
-    internal::check_ply_header(filename, function);
+    internal::check_ply_file(filename, function);
     std::ifstream in(filename, std::ios::binary); // binary: ascii PLY reads fine this way too
     if(!CGAL::IO::read_PLY(in, std::back_inserter(read)))
       throw Input_error(Input_error::Malformed_content,

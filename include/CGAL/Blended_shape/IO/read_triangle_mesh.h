@@ -76,7 +76,9 @@ The orientation is consistent but not necessarily outward.
 \throws Input_error with code
  - `File_not_found`, `Unreadable_file`, `Unsupported_format` (the message lists the extensions);
  - `Malformed_content`: the reader failed, a face uses a missing vertex, or
-   the faces cannot form a valid polygon mesh;
+   the faces cannot form a valid polygon mesh; a PLY file is checked whole
+   first, as read_points() does (its header, every element there, no list
+   longer than the rest of the file);
  - `No_points`: the mesh has no faces (also after removing degenerate ones);
  - `Non_finite_point`: a vertex used by a face has a NaN or infinite coordinate.
 */
