@@ -23,9 +23,12 @@ namespace internal {
 struct Ply_property
 {
   std::string name;
-  std::string type;       // of the value, or of a list's entries
-  std::string count_type; // of a list's length; empty for a scalar
-  bool is_list() const { return !count_type.empty(); }
+  std::string type;            // of the value, or of a list's entries
+  std::string count_type;      // of a list's length; empty for a scalar
+  std::size_t size = 0;        // the bytes of `type`
+  std::size_t count_size = 0;  // the bytes of `count_type`; 0 for a scalar
+  bool signed_count = false;   // whether `count_type` is signed
+  bool is_list() const { return count_size != 0; }
 };
 
 struct Ply_element
@@ -125,10 +128,17 @@ inline Ply_layout read_ply_layout(std::istream& in, const std::string& where)
           throw malformed("the PLY property '" + p.name + "' has the unknown type '" + type +
                           "' (known: char, uchar, short, ushort, int, uint, float, double and "
                           "int8 to float64)");
-      if(p.is_list() && (p.count_type == "float" || p.count_type == "float32" || p.count_type == "double" ||
-                         p.count_type == "float64"))
-        throw malformed("the length of the PLY list '" + p.name + "' has the type '" + p.count_type +
-                        "'; a list length must be an integer type");
+      p.size = ply_type_size(p.type);
+      if(!p.count_type.empty())
+      {
+        if(p.count_type == "float" || p.count_type == "float32" || p.count_type == "double" ||
+           p.count_type == "float64")
+          throw malformed("the length of the PLY list '" + p.name + "' has the type '" + p.count_type +
+                          "'; a list length must be an integer type");
+        p.count_size = ply_type_size(p.count_type);
+        p.signed_count = p.count_type == "char" || p.count_type == "int8" || p.count_type == "short" ||
+                         p.count_type == "int16" || p.count_type == "int" || p.count_type == "int32";
+      }
       layout.elements.back().properties.push_back(p);
     }
   }
@@ -205,7 +215,7 @@ inline void check_ply_data(std::istream& in, std::uintmax_t bytes_left, const Pl
     for(const Ply_property& p : e.properties)
     {
       has_list = has_list || p.is_list();
-      record += ply_type_size(p.type);
+      record += p.size;
     }
     if(!has_list)
     {
@@ -215,35 +225,36 @@ inline void check_ply_data(std::istream& in, std::uintmax_t bytes_left, const Pl
       in.ignore(std::streamsize(e.count * record));
       continue;
     }
+    std::uintmax_t pending = 0; // the bytes passed over since the last list length read
     for(std::uintmax_t k = 0; k < e.count; ++k)
       for(const Ply_property& p : e.properties)
       {
-        const std::size_t size = ply_type_size(p.is_list() ? p.count_type : p.type);
-        if(bytes_left < size)
+        const std::size_t head = p.is_list() ? p.count_size : p.size;
+        if(bytes_left < head)
           throw truncated(e, k);
-        bytes_left -= size;
+        bytes_left -= head;
         if(!p.is_list())
         {
-          in.ignore(std::streamsize(size));
+          pending += head;
           continue;
         }
+        in.ignore(std::streamsize(pending));
+        pending = 0;
         unsigned char bytes[4] = {0, 0, 0, 0};
-        in.read(reinterpret_cast<char*>(bytes), std::streamsize(size));
+        in.read(reinterpret_cast<char*>(bytes), std::streamsize(head));
         std::uintmax_t length = 0;
-        for(std::size_t b = 0; b < size; ++b) // the bytes from the most significant one
-          length = (length << 8) | bytes[big_endian ? b : size - 1 - b];
-        const bool is_signed = p.count_type == "char" || p.count_type == "int8" || p.count_type == "short" ||
-                               p.count_type == "int16" || p.count_type == "int" || p.count_type == "int32";
-        if(is_signed && (length >> (8 * size - 1)) != 0)
+        for(std::size_t b = 0; b < head; ++b) // the bytes from the most significant one
+          length = (length << 8) | bytes[big_endian ? b : head - 1 - b];
+        if(p.signed_count && (length >> (8 * head - 1)) != 0)
           throw Input_error(Input_error::Malformed_content,
                             where + ": the list '" + p.name + "' of " + e.name + " " + std::to_string(k) +
                               " has a negative length; the file is corrupt");
-        const std::size_t entry = ply_type_size(p.type);
-        if(length > bytes_left / entry)
+        if(length > bytes_left / p.size)
           throw too_long(e, k, p, std::to_string(length));
-        bytes_left -= length * entry;
-        in.ignore(std::streamsize(length * entry));
+        bytes_left -= length * p.size;
+        pending += length * p.size;
       }
+    in.ignore(std::streamsize(pending));
   }
 }
 
