@@ -72,8 +72,9 @@ inline Ply_layout read_ply_layout(std::istream& in, const std::string& where)
   std::string line;
   std::getline(in, line);
   if(line != "ply" && line != "ply\r")
-    throw malformed("is not a PLY file (its first line is not 'ply'); check the file, or give it the "
-                    "extension of its real format");
+    throw Input_error(Input_error::Malformed_content,
+                      where + " is not a PLY file (its first line is not 'ply'); check the file, or give it "
+                              "the extension of its real format");
   Ply_layout layout;
   bool has_format = false;
   while(std::getline(in, line))
