@@ -138,7 +138,7 @@ Json event_json(const BS::Evolution_event& e)
   return j;
 }
 
-// How flat the points are, as the first fit's initialization found them.
+// How flat the points are (Fit_metrics::degeneracy).
 const char* degeneracy_name(BS::Point_cloud_degeneracy d)
 {
   switch(d)

@@ -528,9 +528,10 @@ public:
   /// A fit whose root mean square distance is at most this fraction of the
   /// diameter of the points about their centroid fits them to the precision
   /// of the distances (the foot points are found to 1e-12 relatively), far
-  /// below any scan's noise: at rest, whatever its last steps changed. Its energy is rounding, whose relative changes from
-  /// step to step say nothing; without this a fit of noise-free points could
-  /// step on at random until its iteration limit and call itself not converged.
+  /// below any scan's noise: at rest, whatever its last steps changed. Its
+  /// energy is rounding, whose relative changes from step to step say
+  /// nothing; without this a fit of noise-free points could step on at
+  /// random until its iteration limit and call itself not converged.
   static constexpr double exact_fit_ratio = 1e-9;
 
 private:

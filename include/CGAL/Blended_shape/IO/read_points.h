@@ -133,7 +133,7 @@ inline void check_ply_file(const std::string& filename, const std::string& funct
     for(const Ply_property& p : e.properties)
       if(p.name == "x" || p.name == "y" || p.name == "z")
       {
-        if(!p.is_list() && (p.type == "float" || p.type == "float32" || p.type == "double" || p.type == "float64"))
+        if(!p.is_list() && is_ply_floating_type(p.type))
           ++coordinates_found;
         else if(bad_property.empty())
           bad_property = p.name + " of type " + (p.is_list() ? "list" : p.type);

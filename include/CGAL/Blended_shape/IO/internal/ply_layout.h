@@ -59,6 +59,12 @@ inline std::size_t ply_type_size(const std::string& type)
   return 0;
 }
 
+// Whether a PLY number type is a floating-point one (float, double and their aliases).
+inline bool is_ply_floating_type(const std::string& type)
+{
+  return type == "float" || type == "float32" || type == "double" || type == "float64";
+}
+
 // Reads the header from the start of `in`, which is left at the first byte
 // of the data. `where` starts the messages (the function and the file).
 // Throws Input_error (Malformed_content) on a file that does not start with
@@ -132,8 +138,7 @@ inline Ply_layout read_ply_layout(std::istream& in, const std::string& where)
       p.size = ply_type_size(p.type);
       if(!p.count_type.empty())
       {
-        if(p.count_type == "float" || p.count_type == "float32" || p.count_type == "double" ||
-           p.count_type == "float64")
+        if(is_ply_floating_type(p.count_type))
           throw malformed("the length of the PLY list '" + p.name + "' has the type '" + p.count_type +
                           "'; a list length must be an integer type");
         p.count_size = ply_type_size(p.count_type);
