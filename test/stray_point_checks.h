@@ -10,6 +10,8 @@
 #include "test_util.h"
 
 #include <CGAL/Blended_shape/Fitting/fit_superquadric.h>
+#include <CGAL/Blended_shape/Scanning/CAD_objects.h>
+#include <CGAL/Blended_shape/Scanning/Range_scan_simulator.h>
 #include <blended_shape_testing/compare_superquadrics.h>
 #include <blended_shape_testing/synthetic_scans.h>
 
@@ -65,6 +67,34 @@ void test_fit_among_strays(std::size_t inliers, std::size_t strays, double box_f
   BS_CHECK(inliers_flagged <= inliers / 200, label.str() << ": " << inliers_flagged << " inliers judged stray");
 }
 
+// No strays, but uneven density: the cylinder of the box/cylinder scanned
+// from the default camera (the points above the box's top, every 4th: 1325
+// points), its cap seen face-on (dense), its side at a slant (sparse). One
+// superquadric holds it; the robust default must fit it whole. With the
+// full fits' noise ceiling in the rough fits of the search
+// (candidate_noise_ceiling 0.02), none of them reached that basin: the fit
+// ended at semi-axes 0.44, 1.97, 0.22 with 606 points judged stray.
+template <class K>
+void test_uneven_density_cylinder()
+{
+  const BS::CAD_mesh object = BS::make_box_cylinder();
+  std::vector<typename K::Point_3> pts;
+  std::size_t above = 0;
+  for(const auto& sample : BS::simulate_range_scan(object, BS::default_camera_for(object)))
+    if(sample.point.z() > 1.02 && above++ % 4 == 0)
+      pts.emplace_back(sample.point.x(), sample.point.y(), sample.point.z());
+  const auto r = BS::fit_superquadric(pts);
+  const auto q = r.model.shape().parameters();
+  std::ostringstream label;
+  label << "cylinder of the box/cylinder scan (" << pts.size() << " points, no strays): fit " << q.transpose()
+        << ", " << r.metrics.number_of_stray_points << " points judged stray";
+  // the radius 0.6 (a1, a2), a circular cross-section (e2 = 1), flat ends (e1 small)
+  BS_CHECK(std::abs(q[0] - 0.6) <= 0.02 && std::abs(q[1] - 0.6) <= 0.02 && q[3] < 0.3 && std::abs(q[4] - 1.) < 0.1,
+           label.str());
+  BS_CHECK(r.metrics.number_of_stray_points <= pts.size() / 100, label.str());
+  BS_CHECK(r.metrics.converged, label.str() << ": not converged");
+}
+
 template <class K>
 void run(const char* kernel)
 {
@@ -89,6 +119,7 @@ void run(const char* kernel)
     std::mt19937_64 protocol_rng(5000u + fit);
     test_fit_among_strays<K>(3600, 2400, 2., protocol_rng);
   }
+  test_uneven_density_cylinder<K>();
   std::cout << "stray points with " << kernel << (blended_shape_test::failures() == before ? ": SUCCESS" : ": FAILED")
             << std::endl;
 }

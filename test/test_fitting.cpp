@@ -570,7 +570,11 @@ void test_bad_input()
   try { BS::fit_superquadric(ok, BS::parameters::area_weight(std::nan(""))); } catch(const std::invalid_argument&) { ++thrown; }
   // (a negative count, as an unsigned one: a memory of 1e19 samples)
   try { BS::fit_superquadric(ok, BS::parameters::projection_start_samples(std::size_t(-1))); } catch(const std::invalid_argument&) { ++thrown; }
-  BS_CHECK(thrown == 10, "invalid settings accepted: " << 10 - thrown);
+  try { BS::fit_superquadric(ok, BS::parameters::noise_ceiling(0.)); } catch(const std::invalid_argument&) { ++thrown; }
+  try { BS::fit_superquadric(ok, BS::parameters::noise_ceiling(std::nan(""))); } catch(const std::invalid_argument&) { ++thrown; }
+  try { BS::fit_superquadric(ok, BS::parameters::candidate_noise_ceiling(-0.05)); } catch(const std::invalid_argument&) { ++thrown; }
+  try { BS::fit_superquadric(ok, BS::parameters::candidate_noise_ceiling(HUGE_VAL)); } catch(const std::invalid_argument&) { ++thrown; }
+  BS_CHECK(thrown == 14, "invalid settings accepted: " << 14 - thrown);
   // A flat cloud is a documented result, never NaN.
   std::vector<Point_3> flat;
   for(int i = 0; i < 200; ++i) flat.emplace_back(i % 20, i / 20, 0.);
@@ -913,6 +917,7 @@ void test_settings_from_named_parameters()
              none.projection_start_samples == d.projection_start_samples && none.subset_size == d.subset_size &&
              none.random_seed == d.random_seed && none.rigid_first == d.rigid_first &&
              none.rigid_iterations == d.rigid_iterations && none.robust_weighting == d.robust_weighting &&
+             none.noise_ceiling == d.noise_ceiling && none.candidate_noise_ceiling == d.candidate_noise_ceiling &&
              none.maximum_size_factor == d.maximum_size_factor &&
              none.placement_stiffness == d.placement_stiffness && none.area_weight == d.area_weight &&
              none.maximum_running_time == d.maximum_running_time &&
@@ -924,7 +929,8 @@ void test_settings_from_named_parameters()
     BSP::projection_start_samples(std::size_t(250), BSP::subset_size(std::size_t(123), BSP::rigid_first(true, BSP::rigid_iterations(std::size_t(4),
     BSP::robust_weighting(BS::Robust_weighting::Cauchy, BSP::maximum_size_factor(2.5,
     BSP::placement_stiffness(0.5, BSP::rest_tolerance(1e-3, BSP::settling_tolerance(0.25,
-    BSP::area_weight(0.25, BSP::number_of_threads(std::size_t(3))))))))))))))))))
+    BSP::noise_ceiling(0.03, BSP::candidate_noise_ceiling(0.07,
+    BSP::area_weight(0.25, BSP::number_of_threads(std::size_t(3))))))))))))))))))))
       .number_of_iterations(std::size_t(77))
       .random_seed(5u)
       .maximum_running_time(3.));
@@ -934,6 +940,7 @@ void test_settings_from_named_parameters()
              s.rigid_iterations == 4 && s.robust_weighting == BS::Robust_weighting::Cauchy &&
              s.maximum_size_factor == 2.5 && s.placement_stiffness == 0.5 && s.maximum_running_time == 3. &&
              s.rest_tolerance == 1e-3 && s.settling_tolerance == 0.25 && s.area_weight == 0.25 &&
+             s.noise_ceiling == 0.03 && s.candidate_noise_ceiling == 0.07 &&
              s.number_of_threads == 3,
            "a named parameter did not reach its setting");
 }

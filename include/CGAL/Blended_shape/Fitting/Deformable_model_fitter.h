@@ -585,6 +585,10 @@ private:
             "rest_tolerance must be in [0, 1) (a relative energy decrease per step; 1e-4 is the default)");
     require(s.settling_tolerance >= 0. && s.settling_tolerance < 1.,
             "settling_tolerance must be in [0, 1) (a relative energy decrease per step; 1e-3 is the default)");
+    require(s.noise_ceiling > 0. && s.noise_ceiling <= 1.,
+            "noise_ceiling must be in (0, 1] (a fraction of the points' diameter; 0.02 is the default)");
+    require(s.candidate_noise_ceiling > 0. && s.candidate_noise_ceiling <= 1.,
+            "candidate_noise_ceiling must be in (0, 1] (a fraction of the points' diameter; 0.05 is the default)");
     require(s.maximum_size_factor > 0., "maximum_size_factor must be > 0");
     require(s.placement_stiffness >= 0. && std::isfinite(s.placement_stiffness),
             "placement_stiffness must be a finite number >= 0");
@@ -1270,10 +1274,10 @@ private:
       c.distance[k] = std::sqrt(foot.squared_distance);
     });
     // The strays' volume: the ball of the points' diameter D (rotation-invariant,
-    // unlike their box). The noise is taken to be at most 2 % of D.
+    // unlike their box). The noise is taken to be at most noise_ceiling D.
     c.loss = Robust_loss::estimate(m_settings.robust_weighting, c.distance, surface_area(),
                                    CGAL_PI / 6. * CGAL::square(m_diameter) * m_diameter, 1e-9 * m_diameter,
-                                   0.02 * m_diameter);
+                                   m_settings.noise_ceiling * m_diameter);
     return c;
   }
 

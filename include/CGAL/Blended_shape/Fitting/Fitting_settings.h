@@ -93,6 +93,22 @@ struct Fitting_settings
   bool rigid_first = false;               ///< parameter scheduling: translation and rotation alone first
   std::size_t rigid_iterations = 5;       ///< at most this many rigid-only steps
   Robust_weighting robust_weighting = Robust_weighting::Mixture; ///< weighting of far points
+  /// With robust weighting, the scale of the loss (the mixture's noise
+  /// `sigma`, Cauchy's `c`; see Robust_loss) is kept at most this fraction of
+  /// the diameter of the points: far from the rest state one broad Gaussian
+  /// would explain the inliers and the nearby strays alike, and the strays
+  /// would pull the model towards them.
+  double noise_ceiling = 0.02;
+  /// The same ceiling in the rough fits with which the multistart search
+  /// of fit_superquadric() compares its starts (Superquadric_multistart_search:
+  /// at most 10 steps from each start, far from any rest). With the ceiling
+  /// of the full fits, a rough fit of a cloud of uneven density (the dense
+  /// cap and sparse side of a scanned cylinder) is pulled by the points near
+  /// its start alone, and none reaches the basin of the shape that holds
+  /// the whole cloud (see the manual, Robust Weights). The candidates are
+  /// compared with capped distances, so strays still decide nothing. The part
+  /// fits of part evolution keep `noise_ceiling` (see Part_evolution).
+  double candidate_noise_ceiling = 0.05;
   /// Shape lengths (Parameter_kind::Length, e.g. semi-axes) are kept at most this
   /// factor times the diameter of the points about their centroid (twice the
   /// largest distance to it; unlike a bounding box, it does not depend on the

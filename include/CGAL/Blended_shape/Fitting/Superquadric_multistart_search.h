@@ -156,7 +156,12 @@ called alone): the strays far from all candidates add the same `tau^2` to
 each, instead of making the candidate that reaches farthest towards them win.
 
 The rough fits use a 16th of the subset (250 points by default; the same
-points for every candidate), loose tolerances and at most 10 iterations.
+points for every candidate), loose tolerances, at most 10 iterations and,
+with robust weighting, a noise ceiling of
+`Fitting_settings::candidate_noise_ceiling` (5 % of the points' diameter)
+instead of the full fits' 2 %: at 2 %, the rough fits of a scanned cylinder
+alone (its dense cap, its sparse side; no strays) each reached only the
+points near their start, and the fit took part of the cylinder for strays.
 Among 40 % strays that leaves about 150 points of the surface, enough to
 tell the basins of a thin box seen from one view apart: with a 25th (160
 points), one of 20 seeded clouds of the peer protocol over twice the box
@@ -198,6 +203,7 @@ public:
     m_rough.force_tolerance = (std::max)(settings.force_tolerance, 1e-2);
     m_rough.maximum_iterations = (std::min<std::size_t>)(settings.maximum_iterations, 10);
     m_rough.mesh_resolution = (std::max)(2, settings.mesh_resolution / 2); // the mesh only seeds the analytic closest points
+    m_rough.noise_ceiling = settings.candidate_noise_ceiling; // far from rest, see Fitting_settings
     // the challengers' fits on the subset: only to compare them
     m_challenger.energy_tolerance = (std::max)(settings.energy_tolerance, 1e-6);
     m_challenger.force_tolerance = (std::max)(settings.force_tolerance, 1e-3);
