@@ -9,6 +9,7 @@
 //   fit_single_superquadric --equivariance N [--output FILE]
 //   fit_single_superquadric --outliers FRACTION --outlier-box FACTOR [--fits N] [--output FILE]
 //   fit_single_superquadric --similar-search N [--output FILE]
+//   fit_single_superquadric --scanner-views N [--threads N] [--output FILE]
 //
 // --points N: only the clouds of N points: 2000, 20000 or 200000 as above, or
 // any other N (20 fits of each view with the default integrator).
@@ -35,11 +36,23 @@
 // search run by a search of its own, which cannot skip), with how far each
 // fit moved from its start (semi-axes over the largest, exponents).
 //
+// With --scanner-views, it scans N random superellipsoids (tessellated) with
+// the range scanner from a random direction, no noise, no strays: unlike
+// synthetic_scan(), whose samples are spread evenly by area, the scanner's
+// density follows the view (dense where the surface faces it, sparse where
+// it is seen at a slant). Each cloud is fitted with the robust default and
+// with least squares; a fit is wrong if the RMS of the points' distances to
+// it is over 0.5 % of their diagonal or more than 2 % of the points are
+// farther than 1 % of it. One table row per weighting.
+//
 // Every fit runs in its own child process, whose peak resident memory is
 // reported (points, model meshes, AABB tree and the fit together).
 #include "benchmark_util.h"
 
+#include <CGAL/Blended_shape/Blending/Blended_shape_mesh.h>
+#include <CGAL/Blended_shape/Fitting/Deformable_blended_model.h>
 #include <CGAL/Blended_shape/Fitting/fit_superquadric.h>
+#include <CGAL/Blended_shape/Scanning/Range_scan_simulator.h>
 #include <blended_shape_testing/compare_superquadrics.h>
 #include <blended_shape_testing/equivariance.h>
 #include <CGAL/Blended_shape/internal/write_file_atomically.h>
@@ -263,12 +276,84 @@ std::string similar_search_table(int views)
   return table.str();
 }
 
+// A tessellation of `m` in place (the unified mesh of its shape, moved by its pose).
+CGAL::Surface_mesh<K::Point_3> placed_mesh(const BS::Deformable_model<BS::Superquadric_ellipsoid<K>>& m)
+{
+  const BS::Deformable_model<BS::Superquadric_ellipsoid<K>> unplaced(m.shape(), Eigen::Vector3d::Zero(),
+                                                                     Eigen::Vector4d(1., 0., 0., 0.));
+  CGAL::Surface_mesh<K::Point_3> mesh = BS::make_unified_mesh(BS::make_blended_model(unplaced).shape(), 48);
+  const Eigen::Matrix3d R = m.rotation();
+  for(const auto v : mesh.vertices())
+  {
+    const K::Point_3& p = mesh.point(v);
+    const Eigen::Vector3d x = R * Eigen::Vector3d(p.x(), p.y(), p.z()) + m.translation();
+    mesh.point(v) = K::Point_3(x[0], x[1], x[2]);
+  }
+  return mesh;
+}
+
+// See the header: the robust default and least squares on range scans of
+// random superellipsoids from random directions.
+std::string scanner_view_table(int views, std::size_t threads)
+{
+  typedef BS::Deformable_model<BS::Superquadric_ellipsoid<K>> Model;
+  int wrong[2] = {0, 0};
+  std::vector<double> seconds[2];
+  std::ostringstream wrong_seeds[2];
+  double points = 0.;
+  for(int v = 0; v < views; ++v)
+  {
+    const unsigned int seed = 7000u + unsigned(v);
+    std::mt19937_64 rng(seed);
+    const Model truth = BS::testing::random_superellipsoid<K>(rng);
+    const auto mesh = placed_mesh(truth);
+    BS::Camera<K> camera = BS::default_camera_for(mesh);
+    std::normal_distribution<double> g(0., 1.);
+    const Eigen::Vector3d d = Eigen::Vector3d(g(rng), g(rng), g(rng)).normalized();
+    camera.eye = camera.target + std::sqrt(CGAL::squared_distance(camera.eye, camera.target)) * K::Vector_3(d[0], d[1], d[2]);
+    camera.up = std::abs(d[2]) < 0.9 ? K::Vector_3(0., 0., 1.) : K::Vector_3(1., 0., 0.);
+    std::vector<K::Point_3> pts;
+    for(const auto& sample : BS::simulate_range_scan(mesh, camera))
+      pts.push_back(sample.point);
+    points += double(pts.size()) / views;
+    const double diagonal = BS::testing::bounding_box_diagonal(pts);
+    for(int robust = 0; robust < 2; ++robust)
+    {
+      const auto r = BS::fit_superquadric(
+        pts, BS::parameters::robust_weighting(robust ? BS::Fitting_settings().robust_weighting : BS::Robust_weighting::None,
+                                              BS::parameters::number_of_threads(threads)));
+      BS::Deformable_model_fitter<Model> probe(pts, r.model); // every point's distance to the fit
+      double sum = 0.;
+      std::size_t far = 0;
+      for(const auto& f : probe.forces())
+      {
+        sum += CGAL::square(f.normal_distance);
+        far += std::abs(f.normal_distance) > 0.01 * diagonal ? 1 : 0;
+      }
+      seconds[robust].push_back(r.metrics.seconds);
+      if(std::sqrt(sum / double(pts.size())) > 0.005 * diagonal || double(far) > 0.02 * double(pts.size()))
+        wrong_seeds[robust] << (wrong[robust]++ > 0 ? ", " : "") << seed;
+    }
+  }
+  std::ostringstream table;
+  table << "Machine: " << BB::machine_description() << "; threads: " << (threads == 0 ? std::string("all cores") : std::to_string(threads)) << "; " << views
+        << " random superellipsoids scanned from a random direction (200x200 pixels), " << std::fixed
+        << std::setprecision(0) << points << " points on average\n\n"
+        << "| weighting | fits | wrong | seconds (median / max) | wrong fits (seeds) |\n|---|---:|---:|---:|---|\n";
+  for(int robust = 1; robust >= 0; --robust)
+    table << "| " << (robust ? "robust (the default)" : "least squares") << " | " << views << " | " << wrong[robust]
+          << " | " << std::setprecision(2) << median(seconds[robust]) << " / "
+          << *std::max_element(seconds[robust].begin(), seconds[robust].end()) << " | " << wrong_seeds[robust].str()
+          << " |\n";
+  return table.str();
+}
+
 } // namespace
 
 int main(int argc, char** argv)
 {
   bool quick = false;
-  int equivariance = 0, fits = 10, similar_search = 0;
+  int equivariance = 0, fits = 10, similar_search = 0, scanner_views = 0;
   double outliers = -1., outlier_box = 2.;
   std::size_t only_points = 0, threads = 0, count = 0;
   double area_weight = BS::Fitting_settings().area_weight;
@@ -297,13 +382,17 @@ int main(int argc, char** argv)
     else if(std::strcmp(argv[i], "--similar-search") == 0 && i + 1 < argc && BB::parse_count(argv[i + 1], count) &&
             count > 0)
       similar_search = int(count), ++i;
+    else if(std::strcmp(argv[i], "--scanner-views") == 0 && i + 1 < argc && BB::parse_count(argv[i + 1], count) &&
+            count > 0)
+      scanner_views = int(count), ++i;
     else
     {
       std::cerr << "usage: fit_single_superquadric [--quick] [--points N] [--threads N] [--area-weight W] [--output FILE]\n"
                    "       fit_single_superquadric --equivariance N [--output FILE]\n"
                    "       fit_single_superquadric --outliers FRACTION --outlier-box FACTOR [--fits N] "
                    "[--threads N] [--output FILE]\n"
-                   "       fit_single_superquadric --similar-search N [--output FILE]\n";
+                   "       fit_single_superquadric --similar-search N [--output FILE]\n"
+                   "       fit_single_superquadric --scanner-views N [--threads N] [--output FILE]\n";
       return 2;
     }
   }
@@ -314,6 +403,12 @@ int main(int argc, char** argv)
                               "|---:|---:|---:|---:|---:|---:|---:|\n" +
                               outlier_row(outliers, outlier_box, fits, threads);
     std::cout << "Machine: " << BB::machine_description() << "\n\n" << table;
+    return write_table(output, table);
+  }
+  if(scanner_views > 0)
+  {
+    const std::string table = scanner_view_table(scanner_views, threads);
+    std::cout << table;
     return write_table(output, table);
   }
   if(similar_search > 0)
