@@ -275,9 +275,9 @@ those rests: settled earlier (`settling_tolerance` 1e-3), evolution took
 about half the time, but the box/cylinder scan's force splits ended at 2
 parts and RMS_3 5.1 % (8 parts, 2.3 %), the mannequin's at RMS_3 6.7 %
 (5.8 %), its crease splits at RMS_3 9.5 % (7.4 %). fit_blended_shape()
-settles the final fit on all points, which decides nothing. Likewise a
-crease segment's part (fit_superquadric(), robust) keeps the full fits'
-noise ceiling in the rough fits of its search
+settles the final fit on all points, which decides nothing. A crease
+segment's part (fit_superquadric(), robust) keeps the full fits' noise
+ceiling in the rough fits of its search too
 (Fitting_settings::candidate_noise_ceiling set to `noise_ceiling`): with
 the wider default there, `reproduce_paper --evolve` gave the mannequin 2
 parts at RMS_3 12.8 % (5 parts, 6.3 %) on 5 of 6 seeds. Likewise
