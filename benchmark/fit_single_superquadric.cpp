@@ -279,16 +279,10 @@ std::string similar_search_table(int views)
 // A tessellation of `m` in place (the unified mesh of its shape, moved by its pose).
 CGAL::Surface_mesh<K::Point_3> placed_mesh(const BS::Deformable_model<BS::Superquadric_ellipsoid<K>>& m)
 {
-  const BS::Deformable_model<BS::Superquadric_ellipsoid<K>> unplaced(m.shape(), Eigen::Vector3d::Zero(),
-                                                                     Eigen::Vector4d(1., 0., 0., 0.));
-  CGAL::Surface_mesh<K::Point_3> mesh = BS::make_unified_mesh(BS::make_blended_model(unplaced).shape(), 48);
-  const Eigen::Matrix3d R = m.rotation();
+  const auto blended = BS::make_blended_model(m);
+  CGAL::Surface_mesh<K::Point_3> mesh = BS::make_unified_mesh(blended.shape(), 48);
   for(const auto v : mesh.vertices())
-  {
-    const K::Point_3& p = mesh.point(v);
-    const Eigen::Vector3d x = R * Eigen::Vector3d(p.x(), p.y(), p.z()) + m.translation();
-    mesh.point(v) = K::Point_3(x[0], x[1], x[2]);
-  }
+    mesh.point(v) = blended.placed(mesh.point(v));
   return mesh;
 }
 
