@@ -41,9 +41,10 @@
 // synthetic_scan(), whose samples are spread evenly by area, the scanner's
 // density follows the view (dense where the surface faces it, sparse where
 // it is seen at a slant). Each cloud is fitted with the robust default and
-// with least squares; a fit is wrong if the RMS of the points' distances to
+// with least squares, and with the robust default without mending missed
+// surfaces (fit_superquadric()'s mend_missed_surfaces); a fit is wrong if the RMS of the points' distances to
 // it is over 0.5 % of their diagonal or more than 2 % of the points are
-// farther than 1 % of it. One table row per weighting.
+// farther than 1 % of it. One table row per kind of fit.
 //
 // Every fit runs in its own child process, whose peak resident memory is
 // reported (points, model meshes, AABB tree and the fit together).
@@ -56,6 +57,7 @@
 #include <blended_shape_testing/compare_superquadrics.h>
 #include <blended_shape_testing/equivariance.h>
 #include <CGAL/Blended_shape/internal/write_file_atomically.h>
+#include <blended_shape_testing/scanner_views.h>
 #include <blended_shape_testing/synthetic_scans.h>
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
@@ -276,56 +278,27 @@ std::string similar_search_table(int views)
   return table.str();
 }
 
-// A tessellation of `m` in place (the unified mesh of its shape, moved by its pose).
-CGAL::Surface_mesh<K::Point_3> placed_mesh(const BS::Deformable_model<BS::Superquadric_ellipsoid<K>>& m)
-{
-  const auto blended = BS::make_blended_model(m);
-  CGAL::Surface_mesh<K::Point_3> mesh = BS::make_unified_mesh(blended.shape(), 48);
-  for(const auto v : mesh.vertices())
-    mesh.point(v) = blended.placed(mesh.point(v));
-  return mesh;
-}
-
 // See the header: the robust default and least squares on range scans of
 // random superellipsoids from random directions.
 std::string scanner_view_table(int views, std::size_t threads)
 {
-  typedef BS::Deformable_model<BS::Superquadric_ellipsoid<K>> Model;
-  int wrong[2] = {0, 0};
-  std::vector<double> seconds[2];
-  std::ostringstream wrong_seeds[2];
+  // 0: least squares, 1: the robust default, 2: robust without mending missed surfaces
+  int wrong[3] = {0, 0, 0};
+  std::vector<double> seconds[3];
+  std::ostringstream wrong_seeds[3];
   double points = 0.;
   for(int v = 0; v < views; ++v)
   {
     const unsigned int seed = 7000u + unsigned(v);
-    std::mt19937_64 rng(seed);
-    const Model truth = BS::testing::random_superellipsoid<K>(rng);
-    const auto mesh = placed_mesh(truth);
-    BS::Camera<K> camera = BS::default_camera_for(mesh);
-    std::normal_distribution<double> g(0., 1.);
-    const Eigen::Vector3d d = Eigen::Vector3d(g(rng), g(rng), g(rng)).normalized();
-    camera.eye = camera.target + std::sqrt(CGAL::squared_distance(camera.eye, camera.target)) * K::Vector_3(d[0], d[1], d[2]);
-    camera.up = std::abs(d[2]) < 0.9 ? K::Vector_3(0., 0., 1.) : K::Vector_3(1., 0., 0.);
-    std::vector<K::Point_3> pts;
-    for(const auto& sample : BS::simulate_range_scan(mesh, camera))
-      pts.push_back(sample.point);
+    const std::vector<K::Point_3> pts = BS::testing::scanner_view<K>(seed).points;
     points += double(pts.size()) / views;
-    const double diagonal = BS::testing::bounding_box_diagonal(pts);
-    for(int robust = 0; robust < 2; ++robust)
+    for(int robust = 0; robust < 3; ++robust)
     {
       const auto r = BS::fit_superquadric(
         pts, BS::parameters::robust_weighting(robust ? BS::Fitting_settings().robust_weighting : BS::Robust_weighting::None,
-                                              BS::parameters::number_of_threads(threads)));
-      BS::Deformable_model_fitter<Model> probe(pts, r.model); // every point's distance to the fit
-      double sum = 0.;
-      std::size_t far = 0;
-      for(const auto& f : probe.forces())
-      {
-        sum += CGAL::square(f.normal_distance);
-        far += std::abs(f.normal_distance) > 0.01 * diagonal ? 1 : 0;
-      }
+                                              BS::parameters::mend_missed_surfaces(robust != 2, BS::parameters::number_of_threads(threads))));
       seconds[robust].push_back(r.metrics.seconds);
-      if(std::sqrt(sum / double(pts.size())) > 0.005 * diagonal || double(far) > 0.02 * double(pts.size()))
+      if(!BS::testing::fits_view(pts, r.model))
         wrong_seeds[robust] << (wrong[robust]++ > 0 ? ", " : "") << seed;
     }
   }
@@ -334,8 +307,9 @@ std::string scanner_view_table(int views, std::size_t threads)
         << " random superellipsoids scanned from a random direction (200x200 pixels), " << std::fixed
         << std::setprecision(0) << points << " points on average\n\n"
         << "| weighting | fits | wrong | seconds (median / max) | wrong fits (seeds) |\n|---|---:|---:|---:|---|\n";
-  for(int robust = 1; robust >= 0; --robust)
-    table << "| " << (robust ? "robust (the default)" : "least squares") << " | " << views << " | " << wrong[robust]
+  const char* names[3] = {"least squares", "robust (the default)", "robust, `mend_missed_surfaces(false)`"};
+  for(int robust : {1, 2, 0})
+    table << "| " << names[robust] << " | " << views << " | " << wrong[robust]
           << " | " << std::setprecision(2) << median(seconds[robust]) << " / "
           << *std::max_element(seconds[robust].begin(), seconds[robust].end()) << " | " << wrong_seeds[robust].str()
           << " |\n";

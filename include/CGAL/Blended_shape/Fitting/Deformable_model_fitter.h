@@ -479,6 +479,17 @@ public:
   /// The robust loss of the current model's distances to all points (see Robust_loss).
   const Robust_loss& robust_loss() { return correspondences_of_all_points().loss; }
 
+  /// Whether each point, in the order of the points, is judged stray at the
+  /// current model (Robust_loss::is_stray() of its distance; never without robust weighting).
+  std::vector<bool> stray_points()
+  {
+    const Correspondences& corr = correspondences_of_all_points();
+    std::vector<bool> stray(corr.distance.size());
+    for(std::size_t k = 0; k < stray.size(); ++k)
+      stray[k] = corr.loss.is_stray(corr.distance[k]);
+    return stray;
+  }
+
   /// The mean squared distance from the points in use (all, or the subset)
   /// to their closest model points: comparable between fits of the same points.
   /// Each squared distance is capped at `truncation^2`: then the points

@@ -10,6 +10,8 @@
 #include <CGAL/Blended_shape/Primitives/Superquadric_ellipsoid.h>
 #include <CGAL/Blended_shape/Fitting/initialize_from_moments.h>
 #include <CGAL/Blended_shape/Fitting/internal/Point_normalization.h>
+#include <CGAL/Blended_shape/Fitting/internal/stray_surface_points.h>
+#include <CGAL/Blended_shape/internal/isolated_points.h>
 #include <CGAL/Blended_shape/internal/point_range_types.h>
 #include <CGAL/Blended_shape/parameters.h>
 
@@ -19,6 +21,7 @@
 #include <CGAL/boost/graph/named_params_helper.h>
 #include <CGAL/property_map.h>
 
+#include <algorithm>
 #include <chrono>
 #include <functional>
 #include <memory>
@@ -86,6 +89,65 @@ Fit_metrics compute_fit_metrics(Fitter& fitter, const Ellipsoid_fit<GeomTraits>&
   return m;
 }
 
+namespace internal {
+
+// A rest of the robust fit `fitter` (which ended with `status`) that leaves
+// out part of the surface of a clean scan: its points are judged stray but
+// lie on a surface of their own (count_stray_surface_points()). Range scans
+// are dense where the surface faces the scanner and sparse where it is seen
+// at a slant, and a robust fit can rest on the dense part alone. When more
+// than 1 % of the points (at least minimum_number_of_points) are such, the
+// points not isolated are fitted by least squares
+// (`least_squares_start(points, status)`: the multi-start search, then a
+// fit on the subset), the robust fit goes on from there on the subset, and
+// if it then leaves fewer points of a surface out, it goes on to its rest
+// on all points and replaces the first. The iterations of all count in
+// `status`.
+template <class Fitter, class Point_3, class LeastSquaresStart, class Visitor>
+std::unique_ptr<Fitter> mend_missed_surface(std::unique_ptr<Fitter> fitter, Fitting_status& status,
+                                            const LeastSquaresStart& least_squares_start,
+                                            const std::vector<Point_3>& points, Visitor& visitor,
+                                            const std::function<bool(double)>& callback)
+{
+  const std::vector<Eigen::Vector3d>& coordinates = fitter->points();
+  const double threshold = (std::max)(0.01 * double(coordinates.size()), double(minimum_number_of_points));
+  std::vector<bool> stray = fitter->stray_points();
+  if(double(std::count(stray.begin(), stray.end(), true)) <= threshold)
+    return fitter;
+  const std::vector<bool> isolated = isolated_points(coordinates);
+  const std::size_t missed = count_stray_surface_points(coordinates, stray, isolated);
+  if(double(missed) <= threshold)
+    return fitter;
+  std::vector<Point_3> surface;
+  for(std::size_t i = 0; i < points.size(); ++i)
+    if(!isolated[i])
+      surface.push_back(points[i]);
+  auto count = [&status](const Fitting_status& st) {
+    status.iterations += st.iterations;
+    status.iterations_on_all_points += st.iterations_on_all_points;
+    status.aborted = st.aborted;
+    return !st.aborted;
+  };
+  Fitting_status st;
+  const std::unique_ptr<Fitter> least_squares = least_squares_start(surface, st);
+  if(!count(st))
+    return fitter;
+  std::unique_ptr<Fitter> again = std::make_unique<Fitter>(points, least_squares->model(), fitter->settings());
+  if(!count(again->run(visitor, callback, Fitting_phase::Subset)))
+    return fitter;
+  stray = again->stray_points();
+  if(!(count_stray_surface_points(coordinates, stray, isolated) < missed))
+    return fitter;
+  st = again->run(visitor, callback);
+  if(!count(st))
+    return fitter;
+  status.converged = st.converged;
+  status.timed_out = st.timed_out;
+  return again;
+}
+
+} // namespace internal
+
 /// \ingroup PkgBlendedShapeFitting
 /// What fit_superquadric() returns.
 template <class GeomTraits>
@@ -110,7 +172,8 @@ ellipsoid initialization (initialize_from_trimmed_moments(), or with
 initialize_from_moments()), the search for the
 closest start (Superquadric_multistart_search), the physics-based fit of
 Deformable_model_fitter until steady state, the search for a closer fit
-from similar superquadrics, then the metrics.
+from similar superquadrics, with robust weighting a second fit where the
+first left out part of a surface (`mend_missed_surfaces` below), then the metrics.
 
 The fit works on a normalized copy of the points, centred at the origin
 at about unit size (the centre of their bounding box subtracted, then divided
@@ -138,7 +201,13 @@ done here: the model is always one superquadric.)
   `try_all_axes` (`bool`, default `true`: the multi-start search of
   Superquadric_multistart_search before and after the full fit, whose
   iterations count in the result's; `false`: one fit from the initial
-  ellipsoid with make_initial_model()'s default z axis), and
+  ellipsoid with make_initial_model()'s default z axis),
+  `mend_missed_surfaces` (`bool`, default `true`: with robust weighting and
+  `try_all_axes`, a rest that judges more than 1 % of the points stray
+  where they lie on a surface of their own, as the part of a range scan
+  seen at a slant, is challenged by a fit from a least-squares start, and
+  the one that leaves fewer such points out is kept; see the manual, Robust
+  Weights), and
   `reference_mesh` (a pointer to a `CGAL::Surface_mesh<Point_3>`: then the
   symmetric Chamfer distance to it is reported).
 
@@ -165,6 +234,7 @@ auto fit_superquadric(const PointRange& points, const NamedParameters& np = CGAL
   auto visitor = choose_parameter(get_parameter(np, CGAL::internal_np::visitor), Default_fitting_visitor());
 
   const bool all_axes = choose_parameter(get_parameter(np, internal_np::try_all_axes), true);
+  const bool mend = choose_parameter(get_parameter(np, internal_np::mend_missed_surfaces), true);
   const auto start = std::chrono::steady_clock::now();
 
   // The fit sees the points centred at unit size (checked first), the result is taken back.
@@ -178,16 +248,36 @@ auto fit_superquadric(const PointRange& points, const NamedParameters& np = CGAL
   typedef Superquadric_multistart_search<Geom_traits, std::vector<Point_3>, Normalized_point_map> Search;
   typedef typename Search::Model Model;
   typedef typename Search::Fitter Fitter;
-  Search search(normalized, Normalized_point_map(), s);
-  const Model start_model = all_axes ? search.best_start(initial, visitor, callback) : make_initial_model(initial, 2);
-  std::unique_ptr<Fitter> fitter = std::make_unique<Fitter>(normalized, start_model, s);
-  Fitting_status final_status = search.last_candidate_status();
-  if(!search.aborted())
-    final_status = fitter->run(visitor, callback);
-  if(all_axes)
-    fitter = search.search_similar_basins(std::move(fitter), final_status, visitor, callback);
-  final_status.iterations += search.candidate_iterations();
-  final_status.iterations_on_all_points += search.candidate_iterations_on_all_points();
+  // The multi-start search and the fit of `pts` from `init` up to `last_phase`; when
+  // that is the steady state, then the search among similar basins.
+  auto searched_fit = [&](const std::vector<Point_3>& pts, const Fitting_settings& settings,
+                          const Ellipsoid_fit<Geom_traits>& init, Fitting_phase last_phase, Fitting_status& status) {
+    Search search(pts, Normalized_point_map(), settings);
+    const Model start_model = all_axes ? search.best_start(init, visitor, callback) : make_initial_model(init, 2);
+    std::unique_ptr<Fitter> fitter = std::make_unique<Fitter>(pts, start_model, settings);
+    status = search.last_candidate_status();
+    if(!search.aborted())
+      status = fitter->run(visitor, callback, last_phase);
+    if(all_axes && last_phase == Fitting_phase::All_points)
+      fitter = search.search_similar_basins(std::move(fitter), status, visitor, callback);
+    status.iterations += search.candidate_iterations();
+    status.iterations_on_all_points += search.candidate_iterations_on_all_points();
+    return fitter;
+  };
+  Fitting_status final_status;
+  std::unique_ptr<Fitter> fitter = searched_fit(normalized, s, initial, Fitting_phase::All_points, final_status);
+  if(all_axes && s.robust_weighting != Robust_weighting::None && mend && !final_status.aborted &&
+     !final_status.timed_out)
+  {
+    // (on the subset only: a start for the robust fit, see mend_missed_surface())
+    auto least_squares_start = [&](const std::vector<Point_3>& pts, Fitting_status& status) {
+      Fitting_settings least_squares = s;
+      least_squares.robust_weighting = Robust_weighting::None;
+      return searched_fit(pts, least_squares, initialize_from_moments(pts), Fitting_phase::Subset, status);
+    };
+    fitter = internal::mend_missed_surface(std::move(fitter), final_status, least_squares_start, normalized, visitor,
+                                           callback);
+  }
   final_status.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 
   std::vector<std::size_t> stray_points;

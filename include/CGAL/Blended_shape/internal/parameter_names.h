@@ -40,3 +40,4 @@ CGAL_BLENDED_SHAPE_EVOLUTION_SETTING(intermediate_stage_iterations)
 // fit_superquadric() alone
 CGAL_BLENDED_SHAPE_PARAMETER(reference_mesh)
 CGAL_BLENDED_SHAPE_PARAMETER(try_all_axes)
+CGAL_BLENDED_SHAPE_PARAMETER(mend_missed_surfaces)
