@@ -712,12 +712,17 @@ void test_evolution_limits()
 // Simple_cartesian the base became an octahedron and the part a flat
 // sliver off the data that remove_unpaid_parts() rightly removes. A part
 // that pays is kept in test_structure_equivariance(), through run().)
+// The robust fit is not mended (mend_missed_surfaces(false)): it leaves
+// the part out, the poor start this test is about. (Mended, it holds body
+// and part, and the split's region then lies where the foot points of the
+// check below, taken over at the same distances, moved by up to 1e-8 in
+// chart coordinates, over its 1e-12.)
 template <class K>
 void test_split_model_fits_to_rest()
 {
   typedef BS::Deformable_blended_model<K> Model;
   const auto points = BS::testing::body_with_part_scan<K>(4000, 1);
-  const auto first = BS::fit_superquadric(points);
+  const auto first = BS::fit_superquadric(points, BS::parameters::mend_missed_surfaces(false));
   BS::Deformable_model_fitter<Model> robust(points, BS::make_blended_model(first.model));
   robust.run();
   const BS::Blended_shape_pieces<K> pieces(robust.model().shape(), resolution);

@@ -248,8 +248,8 @@ auto fit_superquadric(const PointRange& points, const NamedParameters& np = CGAL
   typedef Superquadric_multistart_search<Geom_traits, std::vector<Point_3>, Normalized_point_map> Search;
   typedef typename Search::Model Model;
   typedef typename Search::Fitter Fitter;
-  // The multi-start search and the fit of `pts` from `init` up to `last_phase`; when
-  // that is the steady state, then the search among similar basins.
+  // The multi-start search and the fit of `pts` from `init` up to `last_phase`;
+  // after a fit to rest on all points, the search among similar basins too.
   auto searched_fit = [&](const std::vector<Point_3>& pts, const Fitting_settings& settings,
                           const Ellipsoid_fit<Geom_traits>& init, Fitting_phase last_phase, Fitting_status& status) {
     Search search(pts, Normalized_point_map(), settings);
