@@ -283,8 +283,9 @@ the wider default there, `reproduce_paper --evolve` gave the mannequin 2
 parts at RMS_3 12.8 % (5 parts, 6.3 %) on 5 of 6 seeds; and it does not
 mend missed surfaces (fit_superquadric()'s `mend_missed_surfaces` false):
 a segment is cut at creases, and what its part leaves out stays with the
-base or a later split; with the mend, the real mug scan's evolution (seed 0)
-ended with 4 parts instead of 3. Likewise
+base or a later split; with the mend (`reproduce_paper --evolve`, seeds 0
+to 5) the CAD mug got 4 parts on two seeds (2 without), the mannequin the
+same parts, the real mug's parts and RMS moved both ways. Likewise
 evolution's fresh closest-point sweeps (the measure of a model before and
 after a split, a part removed) start from the tessellation alone
 (Fitting_settings::projection_start_samples 0): with the sampled starts,
