@@ -40,11 +40,12 @@
 // the range scanner from a random direction, no noise, no strays: unlike
 // synthetic_scan(), whose samples are spread evenly by area, the scanner's
 // density follows the view (dense where the surface faces it, sparse where
-// it is seen at a slant). Each cloud is fitted with the robust default and
-// with least squares, and with the robust default without mending missed
-// surfaces (fit_superquadric()'s mend_missed_surfaces); a fit is wrong if the RMS of the points' distances to
-// it is over 0.5 % of their diagonal or more than 2 % of the points are
-// farther than 1 % of it. One table row per kind of fit.
+// it is seen at a slant). Each cloud is fitted with the robust default,
+// with the robust default without mending missed surfaces
+// (fit_superquadric()'s mend_missed_surfaces) and with least squares; a
+// fit is wrong if the RMS of the points' distances to it is over 0.5 % of
+// their diagonal or more than 2 % of the points are farther than 1 % of it
+// (testing::fits_view()). One table row per kind of fit.
 //
 // Every fit runs in its own child process, whose peak resident memory is
 // reported (points, model meshes, AABB tree and the fit together).
@@ -278,8 +279,8 @@ std::string similar_search_table(int views)
   return table.str();
 }
 
-// See the header: the robust default and least squares on range scans of
-// random superellipsoids from random directions.
+// See the header: the robust default, unmended and mended, and least
+// squares on range scans of random superellipsoids from random directions.
 std::string scanner_view_table(int views, std::size_t threads)
 {
   // 0: least squares, 1: the robust default, 2: robust without mending missed surfaces
@@ -306,7 +307,7 @@ std::string scanner_view_table(int views, std::size_t threads)
   table << "Machine: " << BB::machine_description() << "; threads: " << (threads == 0 ? std::string("all cores") : std::to_string(threads)) << "; " << views
         << " random superellipsoids scanned from a random direction (200x200 pixels), " << std::fixed
         << std::setprecision(0) << points << " points on average\n\n"
-        << "| weighting | fits | wrong | seconds (median / max) | wrong fits (seeds) |\n|---|---:|---:|---:|---|\n";
+        << "| fit | fits | wrong | seconds (median / max) | wrong fits (seeds) |\n|---|---:|---:|---:|---|\n";
   const char* names[3] = {"least squares", "robust (the default)", "robust, `mend_missed_surfaces(false)`"};
   for(int robust : {1, 2, 0})
     table << "| " << names[robust] << " | " << views << " | " << wrong[robust]
