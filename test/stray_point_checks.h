@@ -10,6 +10,7 @@
 #include "test_util.h"
 
 #include <CGAL/Blended_shape/Fitting/fit_superquadric.h>
+#include <CGAL/Blended_shape/Fitting/internal/stray_surface_points.h>
 #include <CGAL/Blended_shape/Scanning/CAD_objects.h>
 #include <CGAL/Blended_shape/Scanning/Range_scan_simulator.h>
 #include <blended_shape_testing/compare_superquadrics.h>
@@ -145,8 +146,44 @@ void run(const char* kernel)
             << std::endl;
 }
 
+// count_stray_surface_points(), the test of the mend, on points whose
+// answer is known: every point judged stray and none isolated,
+// - spread uniformly through a cube: their neighbourhoods are not flat (the
+//   smallest eigenvalue of a point's and its 16 nearest's covariance is
+//   about a fifth of its trace), so at most 1 % count, which never starts
+//   the mend; with the flatness bound at 1 (every neighbourhood flat
+//   enough) they all count, so the flatness test is what tells them apart;
+// - on a plane (a grid): every one counts;
+// - on the plane but only one in ten judged stray (strays among inliers):
+//   none counts.
+inline void test_stray_surface_points()
+{
+  std::mt19937_64 rng(20261205);
+  std::uniform_real_distribution<double> u(0., 1.);
+  std::vector<Eigen::Vector3d> cube(3000), plane;
+  for(Eigen::Vector3d& p : cube)
+    p = Eigen::Vector3d(u(rng), u(rng), u(rng));
+  for(int i = 0; i < 50; ++i)
+    for(int j = 0; j < 50; ++j)
+      plane.emplace_back(0.02 * i, 0.02 * j, 0.01 * i);
+  const std::vector<bool> cube_stray(cube.size(), true), cube_isolated(cube.size(), false);
+  const std::size_t in_cube = BS::internal::count_stray_surface_points(cube, cube_stray, cube_isolated);
+  BS_CHECK(in_cube <= cube.size() / 100, in_cube << " of " << cube.size() << " points spread through a cube counted as a surface");
+  const std::size_t any_flatness = BS::internal::count_stray_surface_points(cube, cube_stray, cube_isolated, 16, 0.75, 1.);
+  BS_CHECK(any_flatness == cube.size(), any_flatness << " of the cube's points counted without the flatness test");
+  const std::vector<bool> plane_stray(plane.size(), true), plane_isolated(plane.size(), false);
+  const std::size_t on_plane = BS::internal::count_stray_surface_points(plane, plane_stray, plane_isolated);
+  BS_CHECK(on_plane == plane.size(), on_plane << " of " << plane.size() << " stray points of a plane counted as a surface");
+  std::vector<bool> few(plane.size(), false);
+  for(std::size_t i = 0; i < plane.size(); i += 10)
+    few[i] = true;
+  const std::size_t among_inliers = BS::internal::count_stray_surface_points(plane, few, plane_isolated);
+  BS_CHECK(among_inliers == 0, among_inliers << " strays among the inliers of a plane counted as a surface");
+}
+
 inline void run_all()
 {
+  test_stray_surface_points();
   blended_shape_test::for_each_kernel([](auto kernel, const char* name) { run<decltype(kernel)>(name); });
 }
 

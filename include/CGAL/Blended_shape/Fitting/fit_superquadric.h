@@ -122,7 +122,7 @@ std::unique_ptr<Fitter> mend_missed_surface(std::unique_ptr<Fitter> fitter, Fitt
   for(std::size_t i = 0; i < points.size(); ++i)
     if(!isolated[i])
       surface.push_back(points[i]);
-  auto count = [&status](const Fitting_status& st) {
+  auto add_up = [&status](const Fitting_status& st) { // false if `st` was aborted
     status.iterations += st.iterations;
     status.iterations_on_all_points += st.iterations_on_all_points;
     status.aborted = st.aborted;
@@ -130,16 +130,16 @@ std::unique_ptr<Fitter> mend_missed_surface(std::unique_ptr<Fitter> fitter, Fitt
   };
   Fitting_status st;
   const std::unique_ptr<Fitter> least_squares = least_squares_start(surface, st);
-  if(!count(st))
+  if(!add_up(st))
     return fitter;
   std::unique_ptr<Fitter> again = std::make_unique<Fitter>(points, least_squares->model(), fitter->settings());
-  if(!count(again->run(visitor, callback, Fitting_phase::Subset)))
+  if(!add_up(again->run(visitor, callback, Fitting_phase::Subset)))
     return fitter;
   stray = again->stray_points();
   if(!(count_stray_surface_points(coordinates, stray, isolated) < missed))
     return fitter;
   st = again->run(visitor, callback);
-  if(!count(st))
+  if(!add_up(st))
     return fitter;
   status.converged = st.converged;
   status.timed_out = st.timed_out;

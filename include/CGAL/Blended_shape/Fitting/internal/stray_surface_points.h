@@ -21,9 +21,9 @@ namespace internal {
 // covariance at most `flatness` of its trace. Strays spread through a
 // volume are isolated or have neighbours spread in all directions (for a
 // point and its 16 nearest among points spread uniformly, the smallest
-// eigenvalue is about a fifth of the trace: median 0.19, and 0.05 at the
-// least of 1033 such neighbourhoods); strays next to the fitted surface
-// have most of their neighbours on it, where no point is judged stray.
+// eigenvalue is about a fifth of the trace; `test_fitting strays` checks
+// that at most 1 % of such points count); strays next to the fitted
+// surface have most of their neighbours on it, where no point is judged stray.
 inline std::size_t count_stray_surface_points(const std::vector<Eigen::Vector3d>& points,
                                               const std::vector<bool>& stray, const std::vector<bool>& isolated,
                                               std::size_t k = 16, double share = 0.75, double flatness = 0.03)
