@@ -9,7 +9,7 @@
 //
 //   reproduce_paper [--evolve] [--splits forces|creases|both|branches] [--evolution-points N] [--robust] [--threads N]
 //                   [--seed N] [--area-weight W] [--blend-stages N] [--stage-iterations N]
-//                   [--first-sweep] [--csv FILE] [--markdown FILE]
+//                   [--first-sweep] [--input-scale S] [--csv FILE] [--markdown FILE]
 //
 // The fits use the paper's least squares (Robust_weighting::None): its data
 // have no strays, and the robust default may take a part of a multi-part
@@ -38,6 +38,10 @@
 // surface samples) and the evolution's own; and, for 3000 surface samples put
 // off the surface along the normal by up to 0.4 % of the points' diagonal,
 // how many end farther than the surface point they were made from.
+// --input-scale S: every row's points (and the mesh they were scanned from,
+// for the Chamfer distance) multiplied by S > 0 about the origin: with S =
+// 1 + 1e-7, 1 + 2e-7, ... how much a result depends on the last bits of its
+// input (see the manual, The last bits of the input).
 //
 // "iteration / sweep" is the mean time of one iteration of the fit (all its
 // phases: the candidate fits on point subsets and the fit on all points) over
@@ -249,6 +253,7 @@ int main(int argc, char** argv)
   std::size_t threads = 1;
   std::size_t seed = BS::Fitting_settings().random_seed;
   double area_weight = BS::Fitting_settings().area_weight;
+  double input_scale = 1.;
   bool robust = false, evolve = false, first_sweep = false;
   std::size_t evolution_points = BS::Evolution_settings().maximum_evolution_points;
   std::size_t blend_stages = BS::Evolution_settings().blend_stages;
@@ -269,6 +274,9 @@ int main(int argc, char** argv)
     else if(std::strcmp(argv[i], "--area-weight") == 0 && i + 1 < argc && BB::parse_number(argv[i + 1], area_weight) &&
             area_weight >= 0.)
       ++i;
+    else if(std::strcmp(argv[i], "--input-scale") == 0 && i + 1 < argc && BB::parse_number(argv[i + 1], input_scale) &&
+            input_scale > 0. && std::isfinite(input_scale))
+      ++i;
     else if(std::strcmp(argv[i], "--evolution-points") == 0 && i + 1 < argc &&
             BB::parse_count(argv[i + 1], evolution_points))
       ++i;
@@ -287,7 +295,7 @@ int main(int argc, char** argv)
     {
       std::cerr << "usage: reproduce_paper [--evolve] [--splits forces|creases|both|branches] [--evolution-points N] [--robust] "
                    "[--threads N] [--seed N] [--area-weight W] [--blend-stages N] [--stage-iterations N] [--first-sweep] "
-                   "[--csv FILE] [--markdown FILE]\n";
+                   "[--input-scale S] [--csv FILE] [--markdown FILE]\n";
       return 2;
     }
   }
@@ -325,9 +333,23 @@ int main(int argc, char** argv)
                            scan(m, BS::default_camera_for(m)), m});
   }
 
+  if(input_scale != 1.)
+    for(Experiment& e : experiments)
+    {
+      const auto scaled = [&](const K::Point_3& p) {
+        return K::Point_3(input_scale * p.x(), input_scale * p.y(), input_scale * p.z());
+      };
+      for(K::Point_3& p : e.points)
+        p = scaled(p);
+      if(e.reference)
+        for(auto v : e.reference->vertices())
+          e.reference->point(v) = scaled(e.reference->point(v));
+    }
+
   std::ostringstream md, cs, sweeps;
   md << "Machine: " << BB::machine_description() << "; threads: "
-     << (threads == 0 ? std::string("all cores") : std::to_string(threads)) << "; seed: " << seed << "; weighting: "
+     << (threads == 0 ? std::string("all cores") : std::to_string(threads)) << "; seed: " << seed
+     << (input_scale != 1. ? "; input scaled by " + fixed(input_scale, 10) : std::string()) << "; weighting: "
      << (robust ? "robust (Mixture, the default)" : "the paper's least squares") << "; area weight: " << area_weight
      << "; "
      << (evolve ? std::string("fit_blended_shape() (part evolution, splits from ") +
