@@ -40,8 +40,8 @@
 // how many end farther than the surface point they were made from.
 // --input-scale S: every row's points (and the mesh they were scanned from,
 // for the Chamfer distance) multiplied by S > 0 about the origin: with S =
-// 1 + 1e-7, 1 + 2e-7, ... how much a result depends on the last bits of its
-// input (see the manual, The last bits of the input).
+// 1 + 1e-7, 1 + 2e-7, ... how much a result depends on a change of its
+// input far below its noise (see the manual, Inputs changed by 1e-7).
 //
 // "iteration / sweep" is the mean time of one iteration of the fit (all its
 // phases: the candidate fits on point subsets and the fit on all points) over
