@@ -63,6 +63,8 @@
 #include <CGAL/Blended_shape/internal/nearest_points.h>
 
 #include <CGAL/AABB_face_graph_triangle_primitive.h>
+#include <CGAL/Aff_transformation_3.h>
+#include <CGAL/Polygon_mesh_processing/transform.h>
 #include <CGAL/AABB_traits.h>
 #include <CGAL/AABB_tree.h>
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
@@ -334,17 +336,16 @@ int main(int argc, char** argv)
   }
 
   if(input_scale != 1.)
+  {
+    const K::Aff_transformation_3 scaling(CGAL::SCALING, input_scale);
     for(Experiment& e : experiments)
     {
-      const auto scaled = [&](const K::Point_3& p) {
-        return K::Point_3(input_scale * p.x(), input_scale * p.y(), input_scale * p.z());
-      };
       for(K::Point_3& p : e.points)
-        p = scaled(p);
+        p = scaling(p);
       if(e.reference)
-        for(auto v : e.reference->vertices())
-          e.reference->point(v) = scaled(e.reference->point(v));
+        CGAL::Polygon_mesh_processing::transform(scaling, *e.reference);
     }
+  }
 
   std::ostringstream md, cs, sweeps;
   md << "Machine: " << BB::machine_description() << "; threads: "
