@@ -8,7 +8,7 @@
 // ours. Prints Markdown; --csv FILE also writes CSV.
 //
 //   reproduce_paper [--evolve] [--splits forces|creases|both|branches] [--evolution-points N] [--robust] [--threads N]
-//                   [--seed N] [--area-weight W] [--blend-stages N] [--stage-iterations N]
+//                   [--seed N] [--area-weight W] [--blend-stages N] [--stage-iterations N] [--runs N]
 //                   [--first-sweep] [--input-scale S] [--csv FILE] [--markdown FILE]
 //
 // The fits use the paper's least squares (Robust_weighting::None): its data
@@ -27,6 +27,7 @@
 // 4000; 0: evolution on all points). --splits: Evolution_settings::split_source
 // (default creases). --area-weight W: Fitting_settings::area_weight (default
 // 0: the paper's fit, no area term). --blend-stages N, --stage-iterations N:
+// --runs N: Evolution_settings::evolution_runs (default 1).
 // Evolution_settings::blend_stages (default 4) and
 // intermediate_stage_iterations (default 30).
 // --first-sweep (with --evolve): for each evolved model with blends, a
@@ -260,6 +261,7 @@ int main(int argc, char** argv)
   std::size_t evolution_points = BS::Evolution_settings().maximum_evolution_points;
   std::size_t blend_stages = BS::Evolution_settings().blend_stages;
   std::size_t stage_iterations = BS::Evolution_settings().intermediate_stage_iterations;
+  std::size_t runs = BS::Evolution_settings().evolution_runs;
   BS::Split_source split_source = BS::Evolution_settings().split_source;
   for(int i = 1; i < argc; ++i)
   {
@@ -288,6 +290,8 @@ int main(int argc, char** argv)
     else if(std::strcmp(argv[i], "--stage-iterations") == 0 && i + 1 < argc &&
             BB::parse_count(argv[i + 1], stage_iterations) && stage_iterations >= 1)
       ++i;
+    else if(std::strcmp(argv[i], "--runs") == 0 && i + 1 < argc && BB::parse_count(argv[i + 1], runs) && runs >= 1)
+      ++i;
     else if(std::strcmp(argv[i], "--splits") == 0 && i + 1 < argc && (source = BS::split_source_from_name(argv[i + 1])))
     {
       split_source = *source;
@@ -296,7 +300,7 @@ int main(int argc, char** argv)
     else
     {
       std::cerr << "usage: reproduce_paper [--evolve] [--splits forces|creases|both|branches] [--evolution-points N] [--robust] "
-                   "[--threads N] [--seed N] [--area-weight W] [--blend-stages N] [--stage-iterations N] [--first-sweep] "
+                   "[--threads N] [--seed N] [--area-weight W] [--blend-stages N] [--stage-iterations N] [--runs N] [--first-sweep] "
                    "[--input-scale S] [--csv FILE] [--markdown FILE]\n";
       return 2;
     }
@@ -355,7 +359,8 @@ int main(int argc, char** argv)
      << "; "
      << (evolve ? std::string("fit_blended_shape() (part evolution, splits from ") +
                     BS::split_source_name(split_source) + "; blend stages " + std::to_string(blend_stages) +
-                    ", at most " + std::to_string(stage_iterations) + " iterations each but the last)"
+                    ", at most " + std::to_string(stage_iterations) + " iterations each but the last; " +
+                    std::to_string(runs) + (runs == 1 ? " run)" : " runs)")
                 : std::string("fit_superquadric() (one superquadric)")) << "\n\n"
      << "| data | points | param (paper / ours) | iter (paper / ours: all, on all points) | RMS_1,2,3 % paper | RMS_1,2,3 % ours "
         "| parts (paper / ours) | holes | genus | seconds (ours) | iteration / sweep | Chamfer / diagonal (ours) |\n"
@@ -380,7 +385,8 @@ int main(int argc, char** argv)
       const auto evolution_np = BS::parameters::split_source(
         split_source, BS::parameters::blend_stages(
                         blend_stages, BS::parameters::intermediate_stage_iterations(
-                                        stage_iterations, BS::parameters::maximum_evolution_points(evolution_points, np))));
+                                        stage_iterations, BS::parameters::evolution_runs(
+                                                            runs, BS::parameters::maximum_evolution_points(evolution_points, np)))));
       const auto r = BS::fit_blended_shape(e.points, BS::parameters::reference_mesh(reference, evolution_np));
       f.metrics = r.metrics;
       f.parts = r.number_of_parts();

@@ -211,6 +211,7 @@ void test_bad_input(const Temp_dir& dir)
     {quote(dir / "five.xyz") + " --area-weight 0x10", 2, "is not a number"},  // decimal only
     {quote(dir / "five.xyz") + " --blend-stages 0", 2},
     {quote(dir / "five.xyz") + " --stage-iterations 0", 2},
+    {quote(dir / "five.xyz") + " --runs 0", 2, "--runs must be in [1, 1000], not 0"},
     {quote(dir / "five.xyz") + " --reference " + quote(dir / "missing.off"), 1, "missing.off"},
     {quote(dir / "five.xyz") + " --reference " + quote(dir / "garbage.off"), 1, "garbage.off"},
     {quote(dir / "five.xyz") + " --json", 2},           // missing value
@@ -435,6 +436,11 @@ void test_parts_run(const Temp_dir& dir)
   BS_CHECK(kept > 0 && exists(dir / kept_trace.str()), "no trace of the kept split (" << kept_trace.str() << ")");
   BS_CHECK(evolution.is_object() && evolution.value("split_source", std::string()) == "creases",
            "the summary does not name the split source (creases by default)");
+  // one evolution run by default: its description length, run 0 kept
+  const nlohmann::json lengths = evolution.is_object() ? evolution.value("run_description_lengths", none) : none;
+  BS_CHECK(evolution.is_object() && evolution.value("runs", 0.) == 1. && evolution.value("run_kept", -1.) == 0. &&
+             lengths.size() == 1 && lengths[0].is_number(),
+           "the summary does not give the one evolution run and its description length");
   blended_shape_test::report("blended_fit_parts");
 }
 

@@ -666,6 +666,9 @@ void test_evolution_limits()
   bad.intermediate_stage_iterations = 0;
   refused(bad, "intermediate_stage_iterations");
   bad = BS::Evolution_settings();
+  bad.evolution_runs = 0;
+  refused(bad, "evolution_runs");
+  bad = BS::Evolution_settings();
   bad.split_source = static_cast<BS::Split_source>(7);
   refused(bad, "split_source");
   for(BS::Split_source source : {BS::Split_source::Force_regions, BS::Split_source::Crease_segments, BS::Split_source::Both})
@@ -1639,6 +1642,44 @@ void test_region_inside_part()
   }
 }
 
+// Evolution_settings::evolution_runs on the points of test_crease_evolution(),
+// whose one run gave `one`: two runs give two description lengths, keep the
+// shorter (the first on a tie), and keeping the first gives the model of one
+// run, bit for bit; the second run stopped by the callback as it starts
+// leaves the first run's model and length, the result marked stopped.
+template <class Point_3, class Result>
+void check_evolution_runs(const std::vector<Point_3>& points, const Result& one)
+{
+  BS_CHECK(one.run_description_lengths.size() == 1 && one.evolution_run == 0,
+           "one run: " << one.run_description_lengths.size() << " lengths, run " << one.evolution_run << " kept");
+  const auto two = BS::fit_blended_shape(points, BS::parameters::evolution_runs(std::size_t(2)));
+  const std::vector<double>& L = two.run_description_lengths;
+  BS_CHECK(L.size() == 2 && two.evolution_run == (L[1] < L[0] ? 1u : 0u) && L[0] == one.run_description_lengths[0],
+           "two runs: " << L.size() << " lengths, run " << two.evolution_run << " kept");
+  if(L.size() == 2)
+  {
+    if(two.evolution_run == 0)
+      BS_CHECK(BS::testing::same_bits(two.model.parameters(), one.model.parameters()),
+               "two runs, the first kept: not the model of one run");
+    std::cout << "  two evolution runs: description lengths " << L[0] << ", " << L[1] << " (run " << two.evolution_run
+              << " kept, " << two.number_of_parts() << " parts)" << std::endl;
+  }
+  // (the callback is called once an iteration: the first fit's and the first run's pass)
+  std::size_t calls = 0;
+  const std::size_t first_run = one.first_fit.metrics.iterations + one.status.iterations;
+  const auto stopped = BS::fit_blended_shape(
+    points, BS::parameters::evolution_runs(std::size_t(2)).callback(
+              std::function<bool(double)>([&](double) { return ++calls <= first_run; })));
+  const bool sampled = one.first_fit.metrics.number_of_points < points.size(); // (then a final fit, not reached here)
+  BS_CHECK(stopped.status.aborted && stopped.evolution_run == 0 && stopped.run_description_lengths.size() == 1 &&
+             stopped.run_description_lengths[0] == L[0] && stopped.number_of_parts() == one.number_of_parts() &&
+             stopped.model.parameters().allFinite() &&
+             (sampled || BS::testing::same_bits(stopped.model.parameters(), one.model.parameters())),
+           "the second run stopped as it starts: aborted " << stopped.status.aborted << ", run "
+                                                           << stopped.evolution_run << " kept, "
+                                                           << stopped.run_description_lengths.size() << " lengths");
+}
+
 // Evolution from crease segments (Split_source::Crease_segments, the
 // default) on the cylinder on a box: one split, the cylinder's segment blended in as a
 // gradual part (a Part blend), two parts, the same bits on one thread as
@@ -1708,7 +1749,9 @@ void test_crease_evolution()
   BS_CHECK(stopped.status.aborted && stopped.number_of_parts() == 1 && stopped.model.shape().number_of_blends() == 0,
            "stopped while blending the part in: aborted " << stopped.status.aborted << ", "
                                                           << stopped.number_of_parts() << " parts");
+  check_evolution_runs(points, r);
 }
+
 
 // Split_source::Branch_segments: the fits see the central branch of the
 // points first and join one branch at a time, each offered as a part, so
@@ -1853,16 +1896,18 @@ void test_evolution_settings_from_named_parameters()
              none.analysis_resolution == d.analysis_resolution &&
              none.maximum_evolution_points == d.maximum_evolution_points && none.split_source == d.split_source &&
              none.blend_stages == d.blend_stages &&
-             none.intermediate_stage_iterations == d.intermediate_stage_iterations,
+             none.intermediate_stage_iterations == d.intermediate_stage_iterations &&
+             none.evolution_runs == d.evolution_runs && d.evolution_runs == 1,
            "evolution settings without named parameters differ from the defaults");
   const BS::Evolution_settings s = BS::evolution_settings_from_named_parameters(
     BSP::maximum_number_of_parts(std::size_t(5), BSP::target_accuracy(0.01, BSP::maximum_split_tries(std::size_t(2),
     BSP::threshold_factor(2.5, BSP::analysis_resolution(12, BSP::maximum_evolution_points(std::size_t(500),
     BSP::split_source(BS::Split_source::Both, BSP::blend_stages(std::size_t(3),
-    BSP::intermediate_stage_iterations(std::size_t(7)))))))))));
+    BSP::intermediate_stage_iterations(std::size_t(7), BSP::evolution_runs(std::size_t(3))))))))))));
   BS_CHECK(s.maximum_number_of_parts == 5 && s.target_accuracy == 0.01 && s.maximum_split_tries == 2 &&
              s.threshold_factor == 2.5 && s.analysis_resolution == 12 && s.maximum_evolution_points == 500 &&
-             s.split_source == BS::Split_source::Both && s.blend_stages == 3 && s.intermediate_stage_iterations == 7,
+             s.split_source == BS::Split_source::Both && s.blend_stages == 3 && s.intermediate_stage_iterations == 7 &&
+             s.evolution_runs == 3,
            "a named parameter did not reach its member of Evolution_settings");
 }
 

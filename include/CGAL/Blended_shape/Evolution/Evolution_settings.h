@@ -115,6 +115,16 @@ struct Evolution_settings
   /// limit (0.81 %); on the CAD mug, where the stages of the second split
   /// creep to the 100-iteration limit, it took 11 s where no limit took 19 s.
   std::size_t intermediate_stage_iterations = 30;
+  /// How many times fit_blended_shape() evolves the model, each run on the
+  /// points scaled by `1 + r 2^-23` about their centre (run `r = 0, 1, ...`;
+  /// run 0 on the points as they are), from the same first fit; the run kept
+  /// is the one whose evolved model has the shortest description length of
+  /// evolution's points (the test every split passed, Part_evolution; ties:
+  /// the earlier run). Evolution's decisions depend on rest states that a
+  /// change of the input far below its noise moves (the manual, Inputs
+  /// changed by 1e-7): each run is one of the paths the same data can take,
+  /// and the time grows with the runs.
+  std::size_t evolution_runs = 1;
 };
 
 /// \ingroup PkgBlendedShapeEvolution
@@ -142,6 +152,8 @@ inline void check_evolution_settings(const Evolution_settings& s, const std::str
     throw std::invalid_argument(who + ": blend_stages must be at least 1");
   if(s.intermediate_stage_iterations < 1)
     throw std::invalid_argument(who + ": intermediate_stage_iterations must be at least 1");
+  if(s.evolution_runs < 1)
+    throw std::invalid_argument(who + ": evolution_runs must be at least 1 (1: evolve once)");
   if(s.split_source != Split_source::Force_regions && s.split_source != Split_source::Crease_segments &&
      s.split_source != Split_source::Both && s.split_source != Split_source::Branch_segments)
     throw std::invalid_argument(who + ": split_source is not a Split_source");

@@ -59,6 +59,17 @@ inline std::vector<std::size_t> evolution_sample(const std::vector<bool>& isolat
   return thinned;
 }
 
+// The coordinates of `points`, in plain doubles.
+template <class Point_3>
+std::vector<Eigen::Vector3d> coordinates_of(const std::vector<Point_3>& points)
+{
+  std::vector<Eigen::Vector3d> coordinates;
+  coordinates.reserve(points.size());
+  for(const Point_3& p : points)
+    coordinates.emplace_back(CGAL::to_double(p.x()), CGAL::to_double(p.y()), CGAL::to_double(p.z()));
+  return coordinates;
+}
+
 // The points of `points` (through `point_map`) at `indices` (increasing).
 template <class Point_3, class PointRange, class PointMap>
 std::vector<Point_3> points_at(const PointRange& points, const PointMap& point_map,
@@ -153,6 +164,12 @@ struct Blended_fit_result
   /// of the sample alone); with `maximum_number_of_parts` 1,
   /// fit_superquadric() of all the points as asked for.
   Fit_result<GeomTraits> first_fit;
+  /// The run of evolution kept (Evolution_settings::evolution_runs; 0 with one run).
+  std::size_t evolution_run = 0;
+  /// The description length of evolution's points given each run's evolved
+  /// model, in the unit of the input points, in the order of the runs (none
+  /// without evolution); the run kept has the smallest.
+  std::vector<double> run_description_lengths;
   /// The number of parts of the model (its components).
   std::size_t number_of_parts() const { return model.shape().number_of_components(); }
   /// The number of splits kept (a part removed later counts too: see number_of_parts()).
@@ -202,6 +219,16 @@ Like fit_superquadric(), evolution works on a copy of the points centred at
 the origin at about unit size, and the model is mapped back exactly: the
 result does not depend on the unit of the points or on where they are.
 
+With `evolution_runs` N > 1, evolution runs N times from the same first
+fit, run `r` on that copy scaled by `1 + r 2^-23` (the same data, rounded
+otherwise: its fits take other paths, see the manual, Inputs changed by
+1e-7), and the run whose evolved model has the shortest description length
+of evolution's points is kept (Blended_fit_result::evolution_run,
+Blended_fit_result::run_description_lengths); the final fit on all points
+is that run's. The visitor sees every run's events in turn, and
+`status` is the kept run's. A run stopped by the callback ends the runs:
+after the first, the run kept is the best of those before it.
+
 \param points the input points (see check_points())
 \param np optional named parameters:
   - every member of Fitting_settings (settings_from_named_parameters()),
@@ -209,7 +236,8 @@ result does not depend on the unit of the points or on where they are.
   - every member of Evolution_settings (evolution_settings_from_named_parameters()):
     `maximum_number_of_parts` (1: one superquadric), `target_accuracy`,
     `maximum_split_tries`, `threshold_factor`, `analysis_resolution`,
-    `maximum_evolution_points`, `split_source`, `blend_stages`;
+    `maximum_evolution_points`, `split_source`, `blend_stages`,
+    `intermediate_stage_iterations`, `evolution_runs`;
   - `point_map`, `geom_traits`, `try_all_axes`: as for fit_superquadric();
   - `reference_mesh` (a pointer to a `CGAL::Surface_mesh<Point_3>`): the
     result's metrics then hold the symmetric Chamfer distance of the model
@@ -272,8 +300,7 @@ auto fit_blended_shape(const PointRange& points, const NamedParameters& np = CGA
     const std::size_t maximum = evolution_settings.maximum_evolution_points;
     if(maximum > 0 && normalized.size() > maximum)
     {
-      for(const Point_3& p : normalized)
-        coordinates.emplace_back(CGAL::to_double(p.x()), CGAL::to_double(p.y()), CGAL::to_double(p.z()));
+      coordinates = internal::coordinates_of(normalized);
       isolated = internal::isolated_points(coordinates);
       fitted = std::size_t(std::count(isolated.begin(), isolated.end(), false));
       if(fitted > maximum)
@@ -297,7 +324,7 @@ auto fit_blended_shape(const PointRange& points, const NamedParameters& np = CGA
     : sampled ? fit_superquadric(internal::points_at<Point_3>(points, point_map, sample),
                                  least_squares_np.point_map(CGAL::Identity_property_map<Point_3>()))
               : fit_superquadric(points, least_squares_np);
-  Result result{make_blended_model(first_fit.model), {}, {}, first_fit.metrics, first_fit.stray_points, std::move(first_fit)};
+  Result result{make_blended_model(first_fit.model), {}, {}, first_fit.metrics, first_fit.stray_points, std::move(first_fit), 0, {}};
   const Fit_result<Geom_traits>& first = result.first_fit;
   result.status.converged = first.metrics.converged;
   result.status.aborted = first.metrics.aborted; // the model is then the first fit's, as far as it went
@@ -307,28 +334,71 @@ auto fit_blended_shape(const PointRange& points, const NamedParameters& np = CGA
   std::size_t iterations_on_all_points = sampled ? 0 : first.metrics.iterations_on_all_points;
   if(evolve && !result.status.aborted)
   {
-    Part_evolution<Geom_traits> evolution(sampled ? internal::points_at<Point_3>(
-                                                      normalized, CGAL::Identity_property_map<Point_3>(), sample)
-                                                  : normalized,
-                                          make_blended_model(normalization->model_to_normalized(first.model)),
-                                          fitting, evolution_settings);
-    // The split test asks as much of a split as on all the points
-    // (Part_evolution::set_described_points()).
-    if(sampled)
-      evolution.set_described_points(fitted);
-    const double n = double(evolution.described_points());
-    internal::Input_frame_visitor<decltype(visitor), Geom_traits> input_visitor{visitor, *normalization, n};
-    result.status = evolution.run(input_visitor, callback);
-    iterations += result.status.iterations;
-    // Evolution fits all its points at every step, but with the branches
-    // (which it fits a few at a time).
-    if(!sampled && evolution_settings.split_source != Split_source::Branch_segments)
-      iterations_on_all_points += result.status.iterations;
-    for(const Evolution_event& e : evolution.events())
-      result.events.push_back(internal::event_in_input_unit(e, normalization->scale(), n));
-    if(evolution.model().shape().number_of_components() > 1)
+    // Run r evolves the points normalized with the scale times 1 + r 2^-23
+    // (Evolution_settings::evolution_runs): the same data, rounded
+    // otherwise, on which the fits take other paths. The run kept (its
+    // normalization and normalized points replace run 0's) is the one whose
+    // evolved model describes evolution's points in the fewest nats, in the
+    // unit of the input (Part_evolution::description_length() plus n ln(scale)).
+    std::unique_ptr<Part_evolution<Geom_traits>> evolution;
+    for(std::size_t r = 0; r < evolution_settings.evolution_runs; ++r)
     {
-      Fitter* rest_fitter = &evolution.fitter();
+      std::unique_ptr<const internal::Point_normalization<Geom_traits>> run_normalization;
+      std::vector<Point_3> run_normalized;
+      if(r > 0)
+      {
+        run_normalization = std::make_unique<const internal::Point_normalization<Geom_traits>>(
+          points, point_map, 1. + std::ldexp(double(r), -23));
+        run_normalized = run_normalization->normalized_points(points, point_map);
+      }
+      const internal::Point_normalization<Geom_traits>& frame = r > 0 ? *run_normalization : *normalization;
+      const std::vector<Point_3>& frame_points = r > 0 ? run_normalized : normalized;
+      auto run = std::make_unique<Part_evolution<Geom_traits>>(
+        sampled ? internal::points_at<Point_3>(frame_points, CGAL::Identity_property_map<Point_3>(), sample)
+                : frame_points,
+        make_blended_model(frame.model_to_normalized(first.model)), fitting, evolution_settings);
+      // The split test asks as much of a split as on all the points
+      // (Part_evolution::set_described_points()).
+      if(sampled)
+        run->set_described_points(fitted);
+      const double n = double(run->described_points());
+      internal::Input_frame_visitor<decltype(visitor), Geom_traits> run_visitor{visitor, frame, n};
+      const Evolution_status status = run->run(run_visitor, callback);
+      iterations += status.iterations;
+      // Evolution fits all its points at every step, but with the branches
+      // (which it fits a few at a time).
+      if(!sampled && evolution_settings.split_source != Split_source::Branch_segments)
+        iterations_on_all_points += status.iterations;
+      if(status.aborted && r > 0)
+      {
+        result.status.aborted = true; // the runs before it stand
+        break;
+      }
+      const double length = run->description_length() + n * std::log(frame.scale());
+      result.run_description_lengths.push_back(length);
+      if(r == 0 || length < result.run_description_lengths[result.evolution_run])
+      {
+        evolution = std::move(run);
+        result.evolution_run = r;
+        result.status = status;
+        if(r > 0)
+        {
+          normalization = std::move(run_normalization);
+          normalized = std::move(run_normalized);
+        }
+      }
+      if(status.aborted)
+        break;
+    }
+    if(sampled && result.evolution_run > 0) // (the final fit's starts are found among the kept run's points)
+      coordinates = internal::coordinates_of(normalized);
+    const double n = double(evolution->described_points());
+    internal::Input_frame_visitor<decltype(visitor), Geom_traits> input_visitor{visitor, *normalization, n};
+    for(const Evolution_event& e : evolution->events())
+      result.events.push_back(internal::event_in_input_unit(e, normalization->scale(), n));
+    if(evolution->model().shape().number_of_components() > 1)
+    {
+      Fitter* rest_fitter = &evolution->fitter();
       Fitting_status rest;
       rest.converged = result.status.converged;
       rest.aborted = result.status.aborted;
@@ -365,13 +435,13 @@ auto fit_blended_shape(const PointRange& points, const NamedParameters& np = CGA
         // Its rest decides nothing more: settled as the caller asks (evolution's were not).
         Fitting_settings final_settings = rest_fitter->settings();
         final_settings.settling_tolerance = fitting.settling_tolerance;
-        final_fit = std::make_unique<Fitter>(kept, internal::with_blending_regions_held(evolution.model(), true),
+        final_fit = std::make_unique<Fitter>(kept, internal::with_blending_regions_held(evolution->model(), true),
                                              final_settings);
         final_fit->start_from_chart_points(starts);
         if(!result.status.aborted)
         {
           internal::notify_phase(input_visitor, Evolution_phase::Fit_to_rest,
-                                 evolution.model().shape().number_of_components());
+                                 evolution->model().shape().number_of_components());
           rest = final_fit->run(input_visitor, callback);
           iterations += rest.iterations;
           iterations_on_all_points += rest.iterations;
@@ -381,7 +451,7 @@ auto fit_blended_shape(const PointRange& points, const NamedParameters& np = CGA
         rest_fitter = final_fit.get();
       }
       else
-        result.stray_points = evolution.isolated_points();
+        result.stray_points = evolution->isolated_points();
       result.model = normalization->model_from_normalized(internal::with_blending_regions_held(rest_fitter->model(), false));
       // (eq. 14's frame: the initial ellipsoid of all the points, as in a fit of one superquadric)
       result.metrics = normalization->from_normalized(compute_fit_metrics(

@@ -33,6 +33,8 @@ namespace internal {
 // just above half the box's largest side (the normalized points are in
 // [-1, 1]^3 with a side of at least 1/2), so that dividing by it, and
 // multiplying back, is exact: only the subtraction of the center rounds.
+// A `factor` other than 1 multiplies that scale (the runs of
+// Evolution_settings::evolution_runs: the same points, rounded otherwise).
 template <class GeomTraits>
 class Point_normalization
 {
@@ -41,7 +43,7 @@ public:
 
   // \throws Input_error if the points are unusable (check_points()), before anything else.
   template <class PointRange, class PointMap>
-  Point_normalization(const PointRange& points, PointMap point_map)
+  Point_normalization(const PointRange& points, PointMap point_map, double factor = 1.)
   {
     check_points(points, point_map);
     Eigen::Vector3d low = Eigen::Vector3d::Constant(HUGE_VAL), high = -low;
@@ -54,7 +56,7 @@ public:
     m_center = 0.5 * low + 0.5 * high; // halves first: no overflow
     int exponent;
     std::frexp(0.5 * (high - low).maxCoeff(), &exponent); // half the side = m 2^exponent, m in [1/2, 1)
-    m_scale = std::ldexp(1., exponent);
+    m_scale = std::ldexp(1., exponent) * factor;
   }
 
   const Eigen::Vector3d& center() const { return m_center; }
