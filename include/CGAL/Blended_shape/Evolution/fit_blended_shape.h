@@ -143,7 +143,7 @@ struct Blended_fit_result
   /// the unit of the input points, their description lengths those of the
   /// points in that unit (see Part_evolution).
   std::vector<Evolution_event> events;
-  Evolution_status status;              ///< how evolution ended (its iterations do not count the first fit's)
+  Evolution_status status;              ///< how evolution ended (of the run kept, see fit_blended_shape(); its iterations do not count the first fit's)
   /// The fit figures of the model (compute_fit_metrics(), in the unit of
   /// the input; relative RMS in the frame of the initial ellipsoid of all
   /// the points, as in eq. 14): those of the fit of one superquadric the
