@@ -27,9 +27,9 @@
 // 4000; 0: evolution on all points). --splits: Evolution_settings::split_source
 // (default creases). --area-weight W: Fitting_settings::area_weight (default
 // 0: the paper's fit, no area term). --blend-stages N, --stage-iterations N:
-// --runs N: Evolution_settings::evolution_runs (default 1).
 // Evolution_settings::blend_stages (default 4) and
-// intermediate_stage_iterations (default 30).
+// intermediate_stage_iterations (default 30). --runs N:
+// Evolution_settings::evolution_runs (default 1).
 // --first-sweep (with --evolve): for each evolved model with blends, a
 // second table on its first closest-point sweep (a fitter constructed on
 // it, Fitting_settings::projection_start_samples; see the manual, Closest
