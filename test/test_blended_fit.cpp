@@ -441,6 +441,32 @@ void test_parts_run(const Temp_dir& dir)
   BS_CHECK(evolution.is_object() && evolution.value("runs", 0.) == 1. && evolution.value("run_kept", -1.) == 0. &&
              lengths.size() == 1 && lengths[0].is_number(),
            "the summary does not give the one evolution run and its description length");
+  // Two runs: two lengths, the shorter kept; the trace holds both runs'
+  // events in turn, numbered on, then the final model.
+  std::string runs_out;
+  BS_CHECK(run(quote(tool) + " " + quote(dir / "parts.xyz") + " --quiet --max-parts 2 --runs 2 --trace " +
+                 quote(dir / "runs_trace"), dir, nullptr, &runs_out) == 0, "--runs 2");
+  const nlohmann::json runs_parsed = nlohmann::json::parse(runs_out, nullptr, false);
+  const nlohmann::json runs_evolution =
+    runs_parsed.is_object() ? runs_parsed.value("evolution", nlohmann::json::object()) : nlohmann::json::object();
+  const nlohmann::json two = runs_evolution.is_object() ? runs_evolution.value("run_description_lengths", none) : none;
+  const bool two_lengths = two.size() == 2 && two[0].is_number() && two[1].is_number();
+  BS_CHECK(two_lengths && runs_evolution.value("runs", 0.) == 2. &&
+             runs_evolution.value("run_kept", -1.) == (two[1].get<double>() < two[0].get<double>() ? 1. : 0.),
+           "--runs 2: not two lengths with the shorter kept:\n" << runs_out);
+  std::size_t traced = 0; // the events' files of both runs
+  for(const auto& entry : std::filesystem::directory_iterator(dir / "runs_trace"))
+  {
+    const std::string name = entry.path().filename().string();
+    traced += (name.size() > 4 && name.substr(name.size() - 4) == ".ply" && name.find("_first_fit") == std::string::npos &&
+               name.find("_final") == std::string::npos) ? 1 : 0;
+  }
+  std::ostringstream final_trace;
+  final_trace << "runs_trace/" << std::setw(2) << std::setfill('0') << traced + 1 << "_final.ply";
+  const nlohmann::json kept_events = runs_evolution.is_object() ? runs_evolution.value("events", none) : none;
+  BS_CHECK(traced >= kept_events.size() && exists(dir / final_trace.str()),
+           "--runs 2 --trace: " << traced << " events traced, " << kept_events.size() << " in the summary, no "
+                                << final_trace.str());
   blended_shape_test::report("blended_fit_parts");
 }
 

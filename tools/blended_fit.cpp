@@ -17,6 +17,7 @@
 #include <filesystem>
 #include <iomanip>
 #include <iostream>
+#include <memory>
 #include <optional>
 #include <sstream>
 #include <string>
@@ -66,7 +67,7 @@ const char* usage =
   "                       undone), each part removed and a revert, then the first fit and the\n"
   "                       final model, to DIR (created if missing): NN_KIND.ply (pieces\n"
   "                       coloured by component) and NN_KIND.dot (hierarchy), KIND first_fit,\n"
-  "                       split, undo, remove, revert or final\n"
+  "                       split, undo, remove, revert or final (with --runs, every run's in turn)\n"
   "  --no-holes           do not add holes (this release never does)\n"
   "  --max-iterations N   iteration limit of each fit to rest (default 100)\n"
   "  --seed N             random seed for the point subsets (default 0)\n"
@@ -229,7 +230,9 @@ struct Reporter : BS::Default_evolution_visitor
 {
   bool quiet = false;
   std::string trace;
-  std::size_t events = 0, parts = 1;
+  // the events of every run (--runs), counted across the copies the fit makes of its visitor
+  std::shared_ptr<std::size_t> events = std::make_shared<std::size_t>(0);
+  std::size_t parts = 1;
 
   void on_phase(BS::Fitting_phase p, std::size_t it) const
   {
@@ -260,14 +263,14 @@ private:
   void event(const BS::Evolution_event& e, const Model& model)
   {
     parts = model.shape().number_of_components();
-    ++events;
+    const std::size_t index = ++*events;
     if(!quiet)
-      std::cerr << "blended_fit: event " << events << ": " << BS::evolution_event_name(e.kind) << " of component "
+      std::cerr << "blended_fit: event " << index << ": " << BS::evolution_event_name(e.kind) << " of component "
                 << e.component << (e.accepted() ? " kept" : "") << " (RMS " << e.rms_before << " -> " << e.rms_after
                 << ", description length " << e.description_length_before << " -> " << e.description_length_after
                 << "); " << parts << (parts == 1 ? " part" : " parts") << "\n";
     if(!trace.empty())
-      write_trace(trace, events, BS::evolution_event_name(e.kind), model);
+      write_trace(trace, index, BS::evolution_event_name(e.kind), model);
   }
 };
 
@@ -402,7 +405,7 @@ int main(int argc, char** argv)
     if(!trace.empty())
     {
       write_trace(trace, 0, "first_fit", BS::make_blended_model(result.first_fit.model));
-      write_trace(trace, result.events.size() + 1, "final", result.model);
+      write_trace(trace, *reporter.events + 1, "final", result.model);
     }
     // Not progress: a note on the result, also with --quiet.
     const BS::Point_cloud_degeneracy flat = result.metrics.degeneracy;
