@@ -1752,7 +1752,6 @@ void test_crease_evolution()
   check_evolution_runs(points, r);
 }
 
-
 // Split_source::Branch_segments: the fits see the central branch of the
 // points first and join one branch at a time, each offered as a part, so
 // that limbs not yet explained never pull the body out of shape. One view
