@@ -24,7 +24,8 @@ namespace internal {
 // number of points that run in parallel (with TBB, in a task arena of the
 // requested number of threads) or one after another (without TBB); and
 // a few whole tasks in the same way (for_each_task(): the short fits of
-// Superquadric_multistart_search).
+// Superquadric_multistart_search; for_each_task_sharing_threads(): the
+// evolution runs of fit_blended_shape()).
 // Determinism: a block is the unit of every floating-point sum. Each block
 // adds up its own points in order into its own slot, and the slots are added
 // in block order afterwards: the association of every sum depends on the
@@ -41,6 +42,13 @@ public:
   explicit Point_blocks(std::size_t number_of_threads = 0)
   {
 #ifdef CGAL_LINKED_WITH_TBB
+    // Made within a task of for_each_task_sharing_threads(): that task's
+    // arena, of the same number of threads.
+    if(sharing_threads())
+    {
+      m_arena = std::make_unique<tbb::task_arena>(tbb::task_arena::attach());
+      return;
+    }
     // More threads than TBB may run would only make it warn on stderr (and
     // the results are the same at any number): capped at its concurrency.
     const std::size_t available = std::size_t((std::max)(1, tbb::info::default_concurrency()));
@@ -77,21 +85,53 @@ public:
   }
 
   // Calls `f(i)` for each i in [0, tasks), concurrently on the arena's
-  // threads (one after another without TBB): `f` may only write to slots of
-  // its own task. The blocks of points, and a few large tasks such as
-  // whole fits.
+  // threads (in order on one thread, or without TBB): `f` may only write to
+  // slots of its own task. The blocks of points, and a few large tasks such
+  // as whole fits.
+  // A thread that waits for its tasks to end runs only tasks of this call
+  // meanwhile (isolated), never a task it would then wait for in turn.
   template <class F>
   void for_each_task(std::size_t tasks, const F& f) const
   {
 #ifdef CGAL_LINKED_WITH_TBB
-    if(tasks > 1)
+    if(concurrent(tasks))
     {
-      m_arena->execute([&] { tbb::parallel_for(std::size_t(0), tasks, f); });
+      m_arena->execute([&] { tbb::this_task_arena::isolate([&] { tbb::parallel_for(std::size_t(0), tasks, f); }); });
       return;
     }
 #endif
     for(std::size_t i = 0; i < tasks; ++i)
       f(i);
+  }
+
+  // As for_each_task(), for tasks that are whole fits: the Point_blocks
+  // made within a task (its fits') run their blocks on this arena's threads
+  // instead of an arena of their own, and a thread whose task has ended
+  // takes blocks of the others' instead of waiting for them (it is not
+  // isolated: the blocks are tasks of their own, isolated, calls).
+  template <class F>
+  void for_each_task_sharing_threads(std::size_t tasks, const F& f) const
+  {
+#ifdef CGAL_LINKED_WITH_TBB
+    if(concurrent(tasks))
+    {
+      m_arena->execute([&] { tbb::parallel_for(std::size_t(0), tasks, [&](std::size_t i) {
+        const bool before = std::exchange(sharing_threads(), true);
+        try
+        {
+          f(i);
+        }
+        catch(...)
+        {
+          sharing_threads() = before;
+          throw;
+        }
+        sharing_threads() = before;
+      }); });
+      return;
+    }
+#endif
+    for_each_task(tasks, f);
   }
 
 private:
@@ -104,6 +144,15 @@ private:
   }
 
 #ifdef CGAL_LINKED_WITH_TBB
+  bool concurrent(std::size_t tasks) const { return tasks > 1 && m_arena->max_concurrency() > 1; }
+
+  // Whether this thread runs a task of for_each_task_sharing_threads().
+  static bool& sharing_threads()
+  {
+    static thread_local bool sharing = false;
+    return sharing;
+  }
+
   std::unique_ptr<tbb::task_arena> m_arena; // a pointer: the fitter stays movable
 #endif
 };
