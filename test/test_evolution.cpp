@@ -46,6 +46,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iomanip>
 #include <iostream>
 #include <random>
 #include <sstream>
@@ -385,6 +386,42 @@ struct Counting_visitor : BS::Default_evolution_visitor
   {
     removes += e.kind == BS::Evolution_event_kind::Remove ? 1 : 1000;
     parts = m.shape().number_of_components();
+  }
+};
+
+// A visitor that writes down every hook it hears, with its arguments (the
+// energies and description lengths to the bit), to `heard` (shared by its
+// copies), to compare what two calls told their visitors.
+struct Logging_visitor : BS::Default_evolution_visitor
+{
+  std::vector<std::string>* heard;
+  void on_phase(BS::Fitting_phase p, std::size_t iteration) { log("phase", std::size_t(p), iteration); }
+  void on_iteration(std::size_t iteration, double energy, std::size_t points)
+  {
+    log("iteration", iteration, points, energy);
+  }
+  void on_evolution_phase(BS::Evolution_phase p, std::size_t parts) { log("evolution phase", std::size_t(p), parts); }
+  template <class Model>
+  void on_split(const BS::Evolution_event& e, const Model& m) { log_event(e, m); }
+  template <class Model>
+  void on_undo(const BS::Evolution_event& e, const Model& m) { log_event(e, m); }
+  template <class Model>
+  void on_remove(const BS::Evolution_event& e, const Model& m) { log_event(e, m); }
+
+private:
+  template <class Model>
+  void log_event(const BS::Evolution_event& e, const Model& m)
+  {
+    log("event", std::size_t(e.kind), m.shape().number_of_components(), e.description_length_after,
+        m.parameters().sum());
+  }
+  template <class... T>
+  void log(const char* what, const T&... values)
+  {
+    std::ostringstream out;
+    out << what << std::setprecision(17);
+    ((out << ' ' << values), ...);
+    heard->push_back(out.str());
   }
 };
 
@@ -1652,7 +1689,11 @@ void check_evolution_runs(const std::vector<Point_3>& points, const Result& one)
 {
   BS_CHECK(one.run_description_lengths.size() == 1 && one.evolution_run == 0,
            "one run: " << one.run_description_lengths.size() << " lengths, run " << one.evolution_run << " kept");
-  const auto two = BS::fit_blended_shape(points, BS::parameters::evolution_runs(std::size_t(2)));
+  // (the runs go on concurrently: on two threads here, on one below)
+  std::vector<std::string> heard_two, heard_one;
+  const auto two = BS::fit_blended_shape(
+    points, BS::parameters::number_of_threads(std::size_t(2), BS::parameters::evolution_runs(std::size_t(2)))
+              .visitor(Logging_visitor{{}, &heard_two}));
   const std::vector<double>& L = two.run_description_lengths;
   BS_CHECK(L.size() == 2 && two.evolution_run == (L[1] < L[0] ? 1u : 0u) && L[0] == one.run_description_lengths[0],
            "two runs: " << L.size() << " lengths, run " << two.evolution_run << " kept");
@@ -1664,11 +1705,37 @@ void check_evolution_runs(const std::vector<Point_3>& points, const Result& one)
     std::cout << "  two evolution runs: description lengths " << L[0] << ", " << L[1] << " (run " << two.evolution_run
               << " kept, " << two.number_of_parts() << " parts)" << std::endl;
   }
-  // (the callback is called once an iteration: the first fit's and the first run's pass)
+  // At one thread and at two, the same bits, and the visitor hears the
+  // same (every iteration's energy, every event), run 0 first.
+  const auto one_thread = BS::fit_blended_shape(
+    points, BS::parameters::number_of_threads(std::size_t(1), BS::parameters::evolution_runs(std::size_t(2)))
+              .visitor(Logging_visitor{{}, &heard_one}));
+  BS_CHECK(BS::testing::same_bits(one_thread.model.parameters(), two.model.parameters()) &&
+             one_thread.metrics.iterations == two.metrics.iterations && one_thread.run_description_lengths == L &&
+             !heard_one.empty() && heard_two == heard_one,
+           "two runs: one thread and two differ (" << heard_one.size() << " and " << heard_two.size()
+                                                   << " hooks heard)");
+  // Stopped at once, every run stops, at any number of threads: run 0 is
+  // kept as far as it went.
   std::size_t calls = 0;
+  const std::size_t first_fit = one.first_fit.metrics.iterations;
+  const auto all_stopped = BS::fit_blended_shape(
+    points, BS::parameters::number_of_threads(std::size_t(2), BS::parameters::evolution_runs(std::size_t(2))).callback(
+              std::function<bool(double)>([&](double) { return ++calls <= first_fit; })));
+  BS_CHECK(all_stopped.status.aborted && all_stopped.evolution_run == 0 &&
+             all_stopped.run_description_lengths.size() == 1 && all_stopped.model.parameters().allFinite() &&
+             calls == first_fit + 1,
+           "two runs stopped as evolution starts: aborted " << all_stopped.status.aborted << ", run "
+                                                            << all_stopped.evolution_run << " kept, " << calls
+                                                            << " calls of the callback, " << first_fit + 1
+                                                            << " expected");
+  // On one thread the runs go in order: stopped as the second run starts,
+  // the first run's model and description length.
+  // (the callback is called once an iteration: the first fit's and the first run's pass)
+  calls = 0;
   const std::size_t first_run = one.first_fit.metrics.iterations + one.status.iterations;
   const auto stopped = BS::fit_blended_shape(
-    points, BS::parameters::evolution_runs(std::size_t(2)).callback(
+    points, BS::parameters::number_of_threads(std::size_t(1), BS::parameters::evolution_runs(std::size_t(2))).callback(
               std::function<bool(double)>([&](double) { return ++calls <= first_run; })));
   const bool sampled = one.first_fit.metrics.number_of_points < points.size(); // (then a final fit, not reached here)
   BS_CHECK(stopped.status.aborted && stopped.evolution_run == 0 && stopped.run_description_lengths.size() == 1 &&
@@ -1698,7 +1765,9 @@ void test_crease_evolution()
   BS_CHECK(BS::Evolution_settings().split_source == BS::Split_source::Crease_segments,
            "the default split source is not the crease segments");
   // (with a reference mesh: the box, whose Chamfer distance to the result
-  // of two parts is reported, and changes nothing else: see one_thread below)
+  // of two parts is reported, and changes nothing else: the evolved model's
+  // description length is, to the bit, that of run 0 without it, in
+  // check_evolution_runs())
   CGAL::Surface_mesh<typename K::Point_3> box;
   CGAL::make_hexahedron(typename K::Point_3(-1., -1., -1.), typename K::Point_3(1., -1., -1.),
                         typename K::Point_3(1., 1., -1.), typename K::Point_3(-1., 1., -1.),
@@ -1734,12 +1803,8 @@ void test_crease_evolution()
   std::cout << "  crease evolution on a cylinder on a box (" << points.size() << " points): " << r.number_of_parts()
             << " parts, least-squares RMS " << before << " -> " << after << ", result's "
             << 100. * r.metrics.rms_over_bbox_diagonal << " % of the diagonal" << std::endl;
-  // the same bits on one thread as on all (the segment's own superquadric
-  // fit and the staged fits included)
-  const auto one_thread = BS::fit_blended_shape(points, BS::parameters::number_of_threads(std::size_t(1)));
-  BS_CHECK(BS::testing::same_bits(one_thread.model.parameters(), r.model.parameters()) &&
-             one_thread.metrics.iterations == r.metrics.iterations,
-           "crease evolution: one thread and all threads differ");
+  // (the same bits on one thread as on two, the segment's own superquadric
+  // fit and the staged fits included: check_evolution_runs())
   // stopped while the part is blended in: the first fit and evolution's
   // first fit to rest pass, the gradual part's stages are stopped
   std::size_t calls = 0;

@@ -122,8 +122,10 @@ struct Evolution_settings
   /// evolution's points (the test every split passed, Part_evolution; ties:
   /// the earlier run). Evolution's decisions depend on rest states that a
   /// change of the input far below its noise moves (the manual, Inputs
-  /// changed by 1e-7): each run is one of the paths the same data can take,
-  /// and the time grows with the runs.
+  /// changed by 1e-7): each run is one of the paths the same data can take.
+  /// The runs go on concurrently on the fits' threads
+  /// (Fitting_settings::number_of_threads; the result is the same at any
+  /// number); on one core the time grows with the runs.
   std::size_t evolution_runs = 1;
 };
 

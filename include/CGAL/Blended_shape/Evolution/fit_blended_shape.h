@@ -6,6 +6,7 @@
 #include <CGAL/Blended_shape/Evolution/Part_evolution.h>
 #include <CGAL/Blended_shape/Fitting/Blended_model_metrics.h>
 #include <CGAL/Blended_shape/Fitting/fit_superquadric.h>
+#include <CGAL/Blended_shape/Fitting/internal/Point_blocks.h>
 #include <CGAL/Blended_shape/Fitting/internal/Point_normalization.h>
 #include <CGAL/Blended_shape/internal/isolated_points.h>
 #include <CGAL/Blended_shape/internal/nearest_points.h>
@@ -21,6 +22,7 @@
 #include <cmath>
 #include <functional>
 #include <memory>
+#include <mutex>
 #include <utility>
 #include <vector>
 
@@ -130,6 +132,47 @@ private:
   }
 };
 
+// An evolution visitor that records what it hears (the fits' hooks, and
+// evolution's phases and events with their models), to pass it on to a
+// `Target` visitor later (replay()): evolution runs that go on concurrently
+// record, and the caller's visitor then hears of them one run after the
+// other, the same at any number of threads (Recorded_fitting_visitor does
+// this for the fits of one superquadric).
+template <class Target, class Model>
+class Recorded_evolution_visitor
+{
+public:
+  void on_phase(Fitting_phase phase, std::size_t iteration)
+  {
+    m_heard.push_back([=](Target& v) { v.on_phase(phase, iteration); });
+  }
+  void on_iteration(std::size_t iteration, double energy, std::size_t points_used)
+  {
+    m_heard.push_back([=](Target& v) { v.on_iteration(iteration, energy, points_used); });
+  }
+  void on_evolution_phase(Evolution_phase phase, std::size_t parts)
+  {
+    m_heard.push_back([=](Target& v) { notify_phase(v, phase, parts); });
+  }
+  void on_split(const Evolution_event& e, const Model& model) { record_event(e, model); }
+  void on_undo(const Evolution_event& e, const Model& model) { record_event(e, model); }
+  void on_remove(const Evolution_event& e, const Model& model) { record_event(e, model); }
+
+  void replay(Target& visitor) const
+  {
+    for(const auto& heard : m_heard)
+      heard(visitor);
+  }
+
+private:
+  void record_event(const Evolution_event& e, const Model& model)
+  {
+    m_heard.push_back([e, model](Target& v) { notify_event(v, e, model); });
+  }
+
+  std::vector<std::function<void(Target&)>> m_heard;
+};
+
 } // namespace internal
 
 /// \ingroup PkgBlendedShapeEvolution
@@ -225,9 +268,14 @@ otherwise: its fits take other paths, see the manual, Inputs changed by
 1e-7), and the run whose evolved model has the shortest description length
 of evolution's points is kept (Blended_fit_result::evolution_run,
 Blended_fit_result::run_description_lengths); the final fit on all points
-is that run's. The visitor sees every run's events in turn, and
-`status` is the kept run's. A run stopped by the callback ends the runs:
-after the first, the run kept is the best of those before it.
+is that run's. The runs go on concurrently on the threads of the fits
+(`number_of_threads`): the result is the same bits at any number. The
+visitor hears of run 0 as it goes (from the thread that runs it, never of
+two runs at once), then of every other run in turn, once all have ended;
+`status` is the kept run's. The callback is called one call at a time;
+once it has returned false it is not called again and every run stops at
+its next iteration. A run stopped by the callback ends the runs: after
+the first, the run kept is the best of those before it.
 
 \param points the input points (see check_points())
 \param np optional named parameters:
@@ -336,34 +384,74 @@ auto fit_blended_shape(const PointRange& points, const NamedParameters& np = CGA
   {
     // Run r evolves the points normalized with the scale times 1 + r 2^-23
     // (Evolution_settings::evolution_runs): the same data, rounded
-    // otherwise, on which the fits take other paths. The run kept (its
-    // normalization and normalized points replace run 0's) is the one whose
-    // evolved model describes evolution's points in the fewest nats, in the
-    // unit of the input (Part_evolution::description_length() plus n ln(scale)).
-    std::unique_ptr<Part_evolution<Geom_traits>> evolution;
-    for(std::size_t r = 0; r < evolution_settings.evolution_runs; ++r)
+    // otherwise, on which the fits take other paths. The runs go on
+    // concurrently, on the threads of the fits (each run's fits give the
+    // same bits at any number of threads, so the runs do too); run 0 tells
+    // the visitor as it goes, the others record, and the visitor hears
+    // them after it, in order. The run kept (its normalization and
+    // normalized points replace run 0's) is the one whose evolved model
+    // describes evolution's points in the fewest nats, in the unit of the
+    // input (Part_evolution::description_length() plus n ln(scale)).
+    typedef internal::Input_frame_visitor<decltype(visitor), Geom_traits> Frame_visitor;
+    struct Run
     {
-      std::unique_ptr<const internal::Point_normalization<Geom_traits>> run_normalization;
-      std::vector<Point_3> run_normalized;
+      std::unique_ptr<const internal::Point_normalization<Geom_traits>> normalization; // (run 0: `normalization`)
+      std::vector<Point_3> normalized;
+      std::unique_ptr<Part_evolution<Geom_traits>> evolution;
+      Evolution_status status;
+      internal::Recorded_evolution_visitor<Frame_visitor, typename Part_evolution<Geom_traits>::Model> heard;
+    };
+    const std::size_t number_of_runs = evolution_settings.evolution_runs;
+    // (it outlives the runs: their fitters run their blocks on its threads)
+    const internal::Point_blocks run_threads(fitting.number_of_threads);
+    std::vector<Run> runs(number_of_runs);
+    // Concurrent runs call the callback one at a time; once it has returned
+    // false it is not called again, and every run stops at its next iteration.
+    std::mutex callback_mutex;
+    bool stopped = false;
+    std::function<bool(double)> run_callback = callback;
+    if(callback && number_of_runs > 1)
+      run_callback = [&](double fraction) {
+        const std::lock_guard<std::mutex> lock(callback_mutex);
+        stopped = stopped || !callback(fraction);
+        return !stopped;
+      };
+    const auto frame_of = [&](std::size_t r) -> const internal::Point_normalization<Geom_traits>& {
+      return r > 0 ? *runs[r].normalization : *normalization;
+    };
+    run_threads.for_each_task_sharing_threads(number_of_runs, [&](std::size_t r) {
+      Run& run = runs[r];
       if(r > 0)
       {
-        run_normalization = std::make_unique<const internal::Point_normalization<Geom_traits>>(
+        run.normalization = std::make_unique<const internal::Point_normalization<Geom_traits>>(
           points, point_map, 1. + std::ldexp(double(r), -23));
-        run_normalized = run_normalization->normalized_points(points, point_map);
+        run.normalized = run.normalization->normalized_points(points, point_map);
       }
-      const internal::Point_normalization<Geom_traits>& frame = r > 0 ? *run_normalization : *normalization;
-      const std::vector<Point_3>& frame_points = r > 0 ? run_normalized : normalized;
-      auto run = std::make_unique<Part_evolution<Geom_traits>>(
+      const std::vector<Point_3>& frame_points = r > 0 ? run.normalized : normalized;
+      run.evolution = std::make_unique<Part_evolution<Geom_traits>>(
         sampled ? internal::points_at<Point_3>(frame_points, CGAL::Identity_property_map<Point_3>(), sample)
                 : frame_points,
-        make_blended_model(frame.model_to_normalized(first.model)), fitting, evolution_settings);
+        make_blended_model(frame_of(r).model_to_normalized(first.model)), fitting, evolution_settings);
       // The split test asks as much of a split as on all the points
       // (Part_evolution::set_described_points()).
       if(sampled)
-        run->set_described_points(fitted);
-      const double n = double(run->described_points());
-      internal::Input_frame_visitor<decltype(visitor), Geom_traits> run_visitor{visitor, frame, n};
-      const Evolution_status status = run->run(run_visitor, callback);
+        run.evolution->set_described_points(fitted);
+      if(r == 0)
+      {
+        Frame_visitor live{visitor, *normalization, double(run.evolution->described_points())};
+        run.status = run.evolution->run(live, run_callback);
+      }
+      else
+        run.status = run.evolution->run(run.heard, run_callback);
+    });
+    std::unique_ptr<Part_evolution<Geom_traits>> evolution;
+    for(std::size_t r = 0; r < number_of_runs; ++r)
+    {
+      Run& run = runs[r];
+      const double n = double(run.evolution->described_points());
+      Frame_visitor run_visitor{visitor, frame_of(r), n};
+      run.heard.replay(run_visitor);
+      const Evolution_status& status = run.status;
       iterations += status.iterations;
       // Evolution fits all its points at every step, but with the branches
       // (which it fits a few at a time).
@@ -374,17 +462,17 @@ auto fit_blended_shape(const PointRange& points, const NamedParameters& np = CGA
         result.status.aborted = true; // the runs before it stand
         break;
       }
-      const double length = run->description_length() + n * std::log(frame.scale());
+      const double length = run.evolution->description_length() + n * std::log(frame_of(r).scale());
       result.run_description_lengths.push_back(length);
       if(r == 0 || length < result.run_description_lengths[result.evolution_run])
       {
-        evolution = std::move(run);
+        evolution = std::move(run.evolution);
         result.evolution_run = r;
         result.status = status;
         if(r > 0)
         {
-          normalization = std::move(run_normalization);
-          normalized = std::move(run_normalized);
+          normalization = std::move(run.normalization);
+          normalized = std::move(run.normalized);
         }
       }
       if(status.aborted)
