@@ -115,19 +115,16 @@ public:
 #ifdef CGAL_LINKED_WITH_TBB
     if(concurrent(tasks))
     {
-      m_arena->execute([&] { tbb::parallel_for(std::size_t(0), tasks, [&](std::size_t i) {
-        const bool before = std::exchange(sharing_threads(), true);
-        try
-        {
+      m_arena->execute([&] {
+        tbb::parallel_for(std::size_t(0), tasks, [&](std::size_t i) {
+          struct Sharing // (while f(i) runs on this thread)
+          {
+            const bool before = std::exchange(sharing_threads(), true);
+            ~Sharing() { sharing_threads() = before; }
+          } sharing;
           f(i);
-        }
-        catch(...)
-        {
-          sharing_threads() = before;
-          throw;
-        }
-        sharing_threads() = before;
-      }); });
+        });
+      });
       return;
     }
 #endif
