@@ -132,31 +132,34 @@ private:
   }
 };
 
-// An evolution visitor that records what it hears (the fits' hooks, and
-// evolution's phases and events with their models), to pass it on to a
-// `Target` visitor later (replay()): evolution runs that go on concurrently
-// record, and the caller's visitor then hears of them one run after the
-// other, the same at any number of threads (Recorded_fitting_visitor does
-// this for the fits of one superquadric).
+// The visitor of one evolution run: passes what it hears (the fits' hooks,
+// and evolution's phases and events with their models) on to a `Target`
+// visitor at once (`live`), or records it to pass on later (replay()):
+// evolution runs that go on concurrently record, and the caller's visitor
+// then hears of them one run after the other, the same at any number of
+// threads (Recorded_fitting_visitor does this for the fits of one
+// superquadric). One type for both, so that evolution is compiled once.
 template <class Target, class Model>
-class Recorded_evolution_visitor
+class Evolution_run_visitor
 {
 public:
+  explicit Evolution_run_visitor(Target* live = nullptr) : m_live(live) {}
+
   void on_phase(Fitting_phase phase, std::size_t iteration)
   {
-    m_heard.push_back([=](Target& v) { v.on_phase(phase, iteration); });
+    hear([=](Target& v) { v.on_phase(phase, iteration); });
   }
   void on_iteration(std::size_t iteration, double energy, std::size_t points_used)
   {
-    m_heard.push_back([=](Target& v) { v.on_iteration(iteration, energy, points_used); });
+    hear([=](Target& v) { v.on_iteration(iteration, energy, points_used); });
   }
   void on_evolution_phase(Evolution_phase phase, std::size_t parts)
   {
-    m_heard.push_back([=](Target& v) { notify_phase(v, phase, parts); });
+    hear([=](Target& v) { notify_phase(v, phase, parts); });
   }
-  void on_split(const Evolution_event& e, const Model& model) { record_event(e, model); }
-  void on_undo(const Evolution_event& e, const Model& model) { record_event(e, model); }
-  void on_remove(const Evolution_event& e, const Model& model) { record_event(e, model); }
+  void on_split(const Evolution_event& e, const Model& model) { hear_event(e, model); }
+  void on_undo(const Evolution_event& e, const Model& model) { hear_event(e, model); }
+  void on_remove(const Evolution_event& e, const Model& model) { hear_event(e, model); }
 
   void replay(Target& visitor) const
   {
@@ -165,11 +168,23 @@ public:
   }
 
 private:
-  void record_event(const Evolution_event& e, const Model& model)
+  template <class F>
+  void hear(const F& f)
   {
-    m_heard.push_back([e, model](Target& v) { notify_event(v, e, model); });
+    if(m_live != nullptr)
+      f(*m_live);
+    else
+      m_heard.push_back(f);
+  }
+  void hear_event(const Evolution_event& e, const Model& model)
+  {
+    if(m_live != nullptr)
+      notify_event(*m_live, e, model);
+    else
+      m_heard.push_back([e, model](Target& v) { notify_event(v, e, model); }); // (a copy of the model)
   }
 
+  Target* m_live;
   std::vector<std::function<void(Target&)>> m_heard;
 };
 
@@ -393,13 +408,14 @@ auto fit_blended_shape(const PointRange& points, const NamedParameters& np = CGA
     // describes evolution's points in the fewest nats, in the unit of the
     // input (Part_evolution::description_length() plus n ln(scale)).
     typedef internal::Input_frame_visitor<decltype(visitor), Geom_traits> Frame_visitor;
+    typedef internal::Evolution_run_visitor<Frame_visitor, typename Part_evolution<Geom_traits>::Model> Run_visitor;
     struct Run
     {
       std::unique_ptr<const internal::Point_normalization<Geom_traits>> normalization; // (run 0: `normalization`)
       std::vector<Point_3> normalized;
       std::unique_ptr<Part_evolution<Geom_traits>> evolution;
       Evolution_status status;
-      internal::Recorded_evolution_visitor<Frame_visitor, typename Part_evolution<Geom_traits>::Model> heard;
+      Run_visitor heard; // (run 0: none)
     };
     const std::size_t number_of_runs = evolution_settings.evolution_runs;
     // (it outlives the runs: their fitters run their blocks on its threads)
@@ -439,7 +455,8 @@ auto fit_blended_shape(const PointRange& points, const NamedParameters& np = CGA
       if(r == 0)
       {
         Frame_visitor live{visitor, *normalization, double(run.evolution->described_points())};
-        run.status = run.evolution->run(live, run_callback);
+        Run_visitor told(&live);
+        run.status = run.evolution->run(told, run_callback);
       }
       else
         run.status = run.evolution->run(run.heard, run_callback);
@@ -481,7 +498,9 @@ auto fit_blended_shape(const PointRange& points, const NamedParameters& np = CGA
     if(sampled && result.evolution_run > 0) // (the final fit's starts are found among the kept run's points)
       coordinates = internal::coordinates_of(normalized);
     const double n = double(evolution->described_points());
-    internal::Input_frame_visitor<decltype(visitor), Geom_traits> input_visitor{visitor, *normalization, n};
+    Frame_visitor input_visitor{visitor, *normalization, n};
+    // (the fits' code is compiled for this visitor type already)
+    Run_visitor told(&input_visitor);
     for(const Evolution_event& e : evolution->events())
       result.events.push_back(internal::event_in_input_unit(e, normalization->scale(), n));
     if(evolution->model().shape().number_of_components() > 1)
@@ -530,7 +549,7 @@ auto fit_blended_shape(const PointRange& points, const NamedParameters& np = CGA
         {
           internal::notify_phase(input_visitor, Evolution_phase::Fit_to_rest,
                                  evolution->model().shape().number_of_components());
-          rest = final_fit->run(input_visitor, callback);
+          rest = final_fit->run(told, callback);
           iterations += rest.iterations;
           iterations_on_all_points += rest.iterations;
           result.status.converged = rest.converged;
