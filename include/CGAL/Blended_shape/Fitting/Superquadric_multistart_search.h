@@ -8,6 +8,7 @@
 #include <CGAL/Blended_shape/Fitting/Fitting_visitor.h>
 #include <CGAL/Blended_shape/Fitting/initialize_from_moments.h>
 #include <CGAL/Blended_shape/Fitting/internal/Point_blocks.h>
+#include <CGAL/Blended_shape/Fitting/internal/Shared_callback.h>
 #include <CGAL/Blended_shape/Primitives/Superquadric_ellipsoid.h>
 #include <CGAL/Blended_shape/internal/quaternion.h>
 
@@ -18,7 +19,6 @@
 #include <cmath>
 #include <functional>
 #include <memory>
-#include <mutex>
 #include <optional>
 #include <stdexcept>
 #include <string>
@@ -357,15 +357,8 @@ private:
     std::vector<Rough_fit> fits(starts.size());
     std::vector<Fitting_status> status(starts.size());
     std::vector<internal::Recorded_fitting_visitor> heard(starts.size());
-    std::mutex mutex;
-    bool stopped = false;
-    Callback shared_callback;
-    if(callback)
-      shared_callback = [&](double fraction) {
-        const std::lock_guard<std::mutex> lock(mutex);
-        stopped = stopped || !callback(fraction);
-        return !stopped;
-      };
+    internal::Shared_callback shared(callback);
+    const Callback shared_callback = shared.function();
     m_tasks.for_each_task(starts.size(), [&](std::size_t i) {
       Fitter candidate(m_points, starts[i], m_rough, m_point_map);
       status[i] = candidate.run(heard[i], shared_callback, Fitting_phase::Subset);
