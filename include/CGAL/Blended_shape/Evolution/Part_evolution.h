@@ -190,6 +190,57 @@ void notify_phase(Visitor& visitor, Evolution_phase phase, std::size_t parts)
     visitor.on_evolution_phase(phase, parts);
 }
 
+// The hooks of an evolution visitor behind one virtual interface: evolution
+// (and the fits it makes) hears every visitor through it, so that its code
+// is compiled once per model type whatever the visitors (the cost: an
+// indirect call per hook, a few per fitting iteration).
+template <class Model>
+class Evolution_listener
+{
+public:
+  virtual ~Evolution_listener() = default;
+  virtual void on_phase(Fitting_phase phase, std::size_t iteration) = 0;
+  virtual void on_iteration(std::size_t iteration, double energy, std::size_t points_used) = 0;
+  virtual void on_evolution_phase(Evolution_phase phase, std::size_t parts) = 0;
+  virtual void on_split(const Evolution_event& e, const Model& model) = 0;
+  virtual void on_undo(const Evolution_event& e, const Model& model) = 0;
+  virtual void on_remove(const Evolution_event& e, const Model& model) = 0;
+};
+
+// A visitor heard through Evolution_listener: its evolution hooks are
+// called if it has them (notify_phase(), notify_event()).
+template <class Visitor, class Model>
+class Evolution_listener_of final : public Evolution_listener<Model>
+{
+public:
+  explicit Evolution_listener_of(Visitor& visitor) : m_visitor(visitor) {}
+  void on_phase(Fitting_phase phase, std::size_t iteration) override { m_visitor.on_phase(phase, iteration); }
+  void on_iteration(std::size_t iteration, double energy, std::size_t points_used) override
+  {
+    m_visitor.on_iteration(iteration, energy, points_used);
+  }
+  void on_evolution_phase(Evolution_phase phase, std::size_t parts) override { notify_phase(m_visitor, phase, parts); }
+  void on_split(const Evolution_event& e, const Model& model) override { notify_event(m_visitor, e, model); }
+  void on_undo(const Evolution_event& e, const Model& model) override { notify_event(m_visitor, e, model); }
+  void on_remove(const Evolution_event& e, const Model& model) override { notify_event(m_visitor, e, model); }
+
+private:
+  Visitor& m_visitor;
+};
+
+// `f(listener)`, with `visitor` as an Evolution_listener (itself if it is one).
+template <class Model, class Visitor, class F>
+decltype(auto) with_listener(Visitor& visitor, const F& f)
+{
+  if constexpr(std::is_base_of_v<Evolution_listener<Model>, Visitor>)
+    return f(static_cast<Evolution_listener<Model>&>(visitor));
+  else
+  {
+    Evolution_listener_of<Visitor, Model> listener(visitor);
+    return f(static_cast<Evolution_listener<Model>&>(listener));
+  }
+}
+
 } // namespace internal
 
 /*!
@@ -412,11 +463,7 @@ public:
   Fitting_status fit_to_rest(Visitor&& visitor = Visitor(),
                              const std::function<bool(double)>& callback = std::function<bool(double)>())
   {
-    m_last_fit = m_fitter->run(visitor, callback);
-    ++m_version;
-    m_iterations += m_last_fit.iterations;
-    m_rest_converged = m_last_fit.converged;
-    return m_last_fit;
+    return internal::with_listener<Model>(visitor, [&](Listener& l) { return fit_to_rest_heard(l, callback); });
   }
 
   /// The mean squared distance of the points to the current model, as
@@ -461,42 +508,7 @@ public:
   template <class Visitor = Default_evolution_visitor>
   std::size_t remove_unpaid_parts(Visitor&& visitor = Visitor())
   {
-    std::size_t removed = 0;
-    double msd_before = -1.; // measured when first needed
-    for(std::size_t c = model().shape().number_of_components(); c-- > 1;)
-    {
-      Blended_shape<GeomTraits> without = model().shape();
-      try
-      {
-        without.merge_split(c);
-      }
-      catch(const std::logic_error&)
-      {
-        continue; // not a split part, or others are built on it
-      }
-      auto merged = std::make_unique<Fitter>(m_points, Model(without, model().translation(), model().quaternion()),
-                                             m_fitter->settings());
-      Evolution_event e;
-      e.kind = Evolution_event_kind::Remove;
-      e.iteration = m_iterations;
-      e.component = c;
-      if(msd_before < 0.)
-        msd_before = mean_squared_distance();
-      // `merged` is new: its search is the fresh one (mean_squared_distance_of()
-      // would make an identical second fitter).
-      const double msd_after = merged->mean_squared_distance(true);
-      set_measures(e, msd_before, model(), msd_after, merged->model());
-      if(!(e.description_length_after <= e.description_length_before))
-        continue;
-      m_fitter = std::move(merged);
-      ++m_version;
-      m_rest_converged = false;
-      msd_before = msd_after;
-      m_events.push_back(e);
-      internal::notify_event(visitor, m_events.back(), model());
-      ++removed;
-    }
-    return removed;
+    return internal::with_listener<Model>(visitor, [&](Listener& l) { return remove_unpaid_parts_heard(l); });
   }
 
   /// The split proposals of the current model (which should be at rest),
@@ -589,6 +601,74 @@ public:
   bool try_split(const Split_proposal& proposal, Visitor&& visitor = Visitor(),
                  const std::function<bool(double)>& callback = std::function<bool(double)>())
   {
+    return internal::with_listener<Model>(visitor, [&](Listener& l) { return try_split_heard(proposal, l, callback); });
+  }
+
+  /// Evolves until no split is kept, the part limit, the target accuracy, or
+  /// until `callback` returns false (see the class description).
+  template <class Visitor = Default_evolution_visitor>
+  Evolution_status run(Visitor&& visitor = Visitor(),
+                       const std::function<bool(double)>& callback = std::function<bool(double)>())
+  {
+    return internal::with_listener<Model>(visitor, [&](Listener& l) { return run_heard(l, callback); });
+  }
+
+private:
+  typedef internal::Evolution_listener<Model> Listener;
+
+  // The bodies of fit_to_rest(), remove_unpaid_parts(), try_split() and
+  // run(), which hear every visitor through a Listener.
+  Fitting_status fit_to_rest_heard(Listener& visitor, const std::function<bool(double)>& callback)
+  {
+    m_last_fit = m_fitter->run(visitor, callback);
+    ++m_version;
+    m_iterations += m_last_fit.iterations;
+    m_rest_converged = m_last_fit.converged;
+    return m_last_fit;
+  }
+
+  std::size_t remove_unpaid_parts_heard(Listener& visitor)
+  {
+    std::size_t removed = 0;
+    double msd_before = -1.; // measured when first needed
+    for(std::size_t c = model().shape().number_of_components(); c-- > 1;)
+    {
+      Blended_shape<GeomTraits> without = model().shape();
+      try
+      {
+        without.merge_split(c);
+      }
+      catch(const std::logic_error&)
+      {
+        continue; // not a split part, or others are built on it
+      }
+      auto merged = std::make_unique<Fitter>(m_points, Model(without, model().translation(), model().quaternion()),
+                                             m_fitter->settings());
+      Evolution_event e;
+      e.kind = Evolution_event_kind::Remove;
+      e.iteration = m_iterations;
+      e.component = c;
+      if(msd_before < 0.)
+        msd_before = mean_squared_distance();
+      // `merged` is new: its search is the fresh one (mean_squared_distance_of()
+      // would make an identical second fitter).
+      const double msd_after = merged->mean_squared_distance(true);
+      set_measures(e, msd_before, model(), msd_after, merged->model());
+      if(!(e.description_length_after <= e.description_length_before))
+        continue;
+      m_fitter = std::move(merged);
+      ++m_version;
+      m_rest_converged = false;
+      msd_before = msd_after;
+      m_events.push_back(e);
+      internal::notify_event(visitor, m_events.back(), model());
+      ++removed;
+    }
+    return removed;
+  }
+
+  bool try_split_heard(const Split_proposal& proposal, Listener& visitor, const std::function<bool(double)>& callback)
+  {
     // A branch not yet joined is joined first: the split is then judged
     // against the model without it fitted to the same points.
     if(m_settings.split_source == Split_source::Branch_segments && proposal.segment < m_branch_joined.size() &&
@@ -645,7 +725,7 @@ public:
       internal::notify_phase(visitor, Evolution_phase::Split_fit, m_fitter->model().shape().number_of_components());
     }
     const Fitting_status status =
-      gradual ? blend_in_stages(before->settings(), visitor, callback) : fit_to_rest(visitor, callback);
+      gradual ? blend_in_stages(before->settings(), visitor, callback) : fit_to_rest_heard(visitor, callback);
     const double msd_after = mean_squared_distance();
     e.description_length_after = description_length_of(msd_after, model());
     e.rms_after = std::sqrt(msd_after);
@@ -668,11 +748,7 @@ public:
     return false;
   }
 
-  /// Evolves until no split is kept, the part limit, the target accuracy, or
-  /// until `callback` returns false (see the class description).
-  template <class Visitor = Default_evolution_visitor>
-  Evolution_status run(Visitor&& visitor = Visitor(),
-                       const std::function<bool(double)>& callback = std::function<bool(double)>())
+  Evolution_status run_heard(Listener& visitor, const std::function<bool(double)>& callback)
   {
     Evolution_status status;
     const std::size_t start = m_iterations;
@@ -681,7 +757,7 @@ public:
     if(branches && !m_central_branch_fitted)
       start_from_central_branch_fit(callback);
     if(!m_last_fit.aborted)
-      fit_to_rest(visitor, callback);
+      fit_to_rest_heard(visitor, callback);
     while(!m_last_fit.aborted)
     {
       if(m_settings.target_accuracy > 0. &&
@@ -700,7 +776,7 @@ public:
       internal::notify_phase(visitor, Evolution_phase::Split_proposals, parts_before);
       const std::vector<Split_proposal> proposals = propose_splits();
       for(const Split_proposal& p : proposals)
-        if((kept = try_split(p, visitor, callback)) || m_last_fit.aborted)
+        if((kept = try_split_heard(p, visitor, callback)) || m_last_fit.aborted)
           break;
       if(m_last_fit.aborted)
         break;
@@ -711,10 +787,10 @@ public:
           continue;
         break;
       }
-      if(remove_unpaid_parts(visitor) > 0)
+      if(remove_unpaid_parts_heard(visitor) > 0)
       {
         internal::notify_phase(visitor, Evolution_phase::Fit_to_rest, model().shape().number_of_components());
-        fit_to_rest(visitor, callback);
+        fit_to_rest_heard(visitor, callback);
         // No more parts than before the split (the split part itself went):
         // no progress, and the next round could propose the same split again.
         if(model().shape().number_of_components() <= parts_before)
@@ -741,7 +817,6 @@ public:
     return status;
   }
 
-private:
   // The current model with a gradual part for the crease segment of
   // `proposal`, made in two steps. First the base takes the shape of the
   // points outside the segment, not of both (on the box/cylinder scan,
@@ -767,9 +842,8 @@ private:
   // the base's fit is stopped by `callback` (m_last_fit then says how it
   // ended); throws std::invalid_argument if no region holds the segment on
   // the base, or the shape refuses it.
-  template <class Visitor>
   std::optional<Model> with_gradual_part(const Split_proposal& proposal, std::vector<Chart_point>& base_foot_points,
-                                         Visitor&& visitor, const std::function<bool(double)>& callback)
+                                         Listener& visitor, const std::function<bool(double)>& callback)
   {
     const std::vector<std::size_t> member_indices = segment_members(proposal.segment);
     const std::vector<Chart_point> foot = m_fitter->foot_points();
@@ -880,13 +954,12 @@ private:
   // rest). `m_fitter` is the first stage's fitter (stage_fitter());
   // `fit_settings` are those of the fits before the split. Returns the last
   // fit's status (an aborted stage ends it).
-  template <class Visitor>
-  Fitting_status blend_in_stages(const Fitting_settings& fit_settings, Visitor&& visitor,
+  Fitting_status blend_in_stages(const Fitting_settings& fit_settings, Listener& visitor,
                                  const std::function<bool(double)>& callback)
   {
     for(std::size_t k = 1;; ++k)
     {
-      const Fitting_status status = fit_to_rest(visitor, callback);
+      const Fitting_status status = fit_to_rest_heard(visitor, callback);
       if(status.aborted || k >= m_settings.blend_stages)
         return status;
       std::unique_ptr<Fitter> next = stage_fitter(m_fitter->model(), k + 1, fit_settings);
@@ -1092,8 +1165,7 @@ private:
   // evolution was made with, fitted to rest on all the points, replaces the
   // current one (fitted to them too) if its description length is no larger
   // (see the class description). A stopped fit changes nothing.
-  template <class Visitor>
-  void revert_if_unpaid(Visitor&& visitor, const std::function<bool(double)>& callback)
+  void revert_if_unpaid(Listener& visitor, const std::function<bool(double)>& callback)
   {
     auto initial = std::make_unique<Fitter>(m_points, *m_initial, m_fitter->settings());
     const Fitting_status rest = initial->run(visitor, callback);
@@ -1121,8 +1193,7 @@ private:
   // current model to rest on them, the projections of the points joined
   // before starting from their foot points. If `callback` stops the fit,
   // the model and its points are restored.
-  template <class Visitor>
-  Fitting_status join_branches(const std::vector<std::size_t>& segments, Visitor&& visitor,
+  Fitting_status join_branches(const std::vector<std::size_t>& segments, Listener& visitor,
                                const std::function<bool(double)>& callback)
   {
     const std::vector<Chart_point> foot = m_fitter->foot_points();
@@ -1143,7 +1214,7 @@ private:
     next->start_from_chart_points(starts);
     std::unique_ptr<Fitter> before = std::exchange(m_fitter, std::move(next));
     ++m_version;
-    const Fitting_status status = fit_to_rest(visitor, callback);
+    const Fitting_status status = fit_to_rest_heard(visitor, callback);
     if(status.aborted)
     {
       m_fitter = std::move(before);

@@ -8,6 +8,7 @@
 #include <CGAL/Blended_shape/Fitting/fit_superquadric.h>
 #include <CGAL/Blended_shape/Fitting/internal/Point_blocks.h>
 #include <CGAL/Blended_shape/Fitting/internal/Point_normalization.h>
+#include <CGAL/Blended_shape/Fitting/internal/Shared_callback.h>
 #include <CGAL/Blended_shape/internal/isolated_points.h>
 #include <CGAL/Blended_shape/internal/nearest_points.h>
 #include <CGAL/Blended_shape/internal/point_range_types.h>
@@ -22,7 +23,6 @@
 #include <cmath>
 #include <functional>
 #include <memory>
-#include <mutex>
 #include <utility>
 #include <vector>
 
@@ -104,64 +104,74 @@ Deformable_blended_model<GeomTraits> with_blending_regions_held(const Deformable
 // Passes the hooks of an evolution on normalized points to `visitor` with
 // the events and models in the frame of the input.
 template <class Visitor, class GeomTraits>
-struct Input_frame_visitor
-{
-  Visitor& visitor;
-  const Point_normalization<GeomTraits>& normalization;
-  double number_of_points;
-
-  void on_phase(Fitting_phase phase, std::size_t iteration) { visitor.on_phase(phase, iteration); }
-  void on_iteration(std::size_t iteration, double energy, std::size_t points_used)
-  {
-    visitor.on_iteration(iteration, energy, points_used);
-  }
-  void on_evolution_phase(Evolution_phase phase, std::size_t parts) { notify_phase(visitor, phase, parts); }
-  template <class Model>
-  void on_split(const Evolution_event& e, const Model& model) { notify(e, model); }
-  template <class Model>
-  void on_undo(const Evolution_event& e, const Model& model) { notify(e, model); }
-  template <class Model>
-  void on_remove(const Evolution_event& e, const Model& model) { notify(e, model); }
-
-private:
-  template <class Model>
-  void notify(const Evolution_event& e, const Model& model)
-  {
-    notify_event(visitor, event_in_input_unit(e, normalization.scale(), number_of_points),
-                 normalization.model_from_normalized(model));
-  }
-};
-
-// The visitor of one evolution run: passes what it hears (the fits' hooks,
-// and evolution's phases and events with their models) on to a `Target`
-// visitor at once (`live`), or records it to pass on later (replay()):
-// evolution runs that go on concurrently record, and the caller's visitor
-// then hears of them one run after the other, the same at any number of
-// threads (Recorded_fitting_visitor does this for the fits of one
-// superquadric). One type for both, so that evolution is compiled once.
-template <class Target, class Model>
-class Evolution_run_visitor
+class Input_frame_visitor final : public Evolution_listener<Deformable_blended_model<GeomTraits>>
 {
 public:
-  explicit Evolution_run_visitor(Target* live = nullptr) : m_live(live) {}
+  typedef Deformable_blended_model<GeomTraits> Model;
 
-  void on_phase(Fitting_phase phase, std::size_t iteration)
-  {
-    hear([=](Target& v) { v.on_phase(phase, iteration); });
-  }
-  void on_iteration(std::size_t iteration, double energy, std::size_t points_used)
-  {
-    hear([=](Target& v) { v.on_iteration(iteration, energy, points_used); });
-  }
-  void on_evolution_phase(Evolution_phase phase, std::size_t parts)
-  {
-    hear([=](Target& v) { notify_phase(v, phase, parts); });
-  }
-  void on_split(const Evolution_event& e, const Model& model) { hear_event(e, model); }
-  void on_undo(const Evolution_event& e, const Model& model) { hear_event(e, model); }
-  void on_remove(const Evolution_event& e, const Model& model) { hear_event(e, model); }
+  Input_frame_visitor(Visitor& visitor, const Point_normalization<GeomTraits>& normalization, double number_of_points)
+    : m_visitor(visitor), m_normalization(normalization), m_number_of_points(number_of_points)
+  {}
 
-  void replay(Target& visitor) const
+  void on_phase(Fitting_phase phase, std::size_t iteration) override { m_visitor.on_phase(phase, iteration); }
+  void on_iteration(std::size_t iteration, double energy, std::size_t points_used) override
+  {
+    m_visitor.on_iteration(iteration, energy, points_used);
+  }
+  void on_evolution_phase(Evolution_phase phase, std::size_t parts) override { notify_phase(m_visitor, phase, parts); }
+  void on_split(const Evolution_event& e, const Model& model) override { notify(e, model); }
+  void on_undo(const Evolution_event& e, const Model& model) override { notify(e, model); }
+  void on_remove(const Evolution_event& e, const Model& model) override { notify(e, model); }
+
+private:
+  void notify(const Evolution_event& e, const Model& model)
+  {
+    notify_event(m_visitor, event_in_input_unit(e, m_normalization.scale(), m_number_of_points),
+                 m_normalization.model_from_normalized(model));
+  }
+
+  Visitor& m_visitor;
+  const Point_normalization<GeomTraits>& m_normalization;
+  double m_number_of_points;
+};
+
+// The visitor of an evolution run that goes on concurrently with others: it
+// records what it hears (the fits' hooks, and evolution's phases and events
+// with their models), and the caller's visitor then hears of the runs one
+// after the other (replay()), the same at any number of threads
+// (Recorded_fitting_visitor does this for the fits of one superquadric,
+// which know no evolution events).
+template <class Model>
+class Recorded_evolution_visitor final : public Evolution_listener<Model>
+{
+public:
+  void on_phase(Fitting_phase phase, std::size_t iteration) override
+  {
+    record([=](Evolution_listener<Model>& v) { v.on_phase(phase, iteration); });
+  }
+  void on_iteration(std::size_t iteration, double energy, std::size_t points_used) override
+  {
+    record([=](Evolution_listener<Model>& v) { v.on_iteration(iteration, energy, points_used); });
+  }
+  void on_evolution_phase(Evolution_phase phase, std::size_t parts) override
+  {
+    record([=](Evolution_listener<Model>& v) { v.on_evolution_phase(phase, parts); });
+  }
+  // (each event with a copy of its model)
+  void on_split(const Evolution_event& e, const Model& model) override
+  {
+    record([e, model](Evolution_listener<Model>& v) { v.on_split(e, model); });
+  }
+  void on_undo(const Evolution_event& e, const Model& model) override
+  {
+    record([e, model](Evolution_listener<Model>& v) { v.on_undo(e, model); });
+  }
+  void on_remove(const Evolution_event& e, const Model& model) override
+  {
+    record([e, model](Evolution_listener<Model>& v) { v.on_remove(e, model); });
+  }
+
+  void replay(Evolution_listener<Model>& visitor) const
   {
     for(const auto& heard : m_heard)
       heard(visitor);
@@ -169,23 +179,12 @@ public:
 
 private:
   template <class F>
-  void hear(const F& f)
+  void record(F&& f)
   {
-    if(m_live != nullptr)
-      f(*m_live);
-    else
-      m_heard.push_back(f);
-  }
-  void hear_event(const Evolution_event& e, const Model& model)
-  {
-    if(m_live != nullptr)
-      notify_event(*m_live, e, model);
-    else
-      m_heard.push_back([e, model](Target& v) { notify_event(v, e, model); }); // (a copy of the model)
+    m_heard.emplace_back(std::forward<F>(f));
   }
 
-  Target* m_live;
-  std::vector<std::function<void(Target&)>> m_heard;
+  std::vector<std::function<void(Evolution_listener<Model>&)>> m_heard;
 };
 
 } // namespace internal
@@ -407,31 +406,21 @@ auto fit_blended_shape(const PointRange& points, const NamedParameters& np = CGA
     // normalized points replace run 0's) is the one whose evolved model
     // describes evolution's points in the fewest nats, in the unit of the
     // input (Part_evolution::description_length() plus n ln(scale)).
+    typedef typename Part_evolution<Geom_traits>::Model Model;
     typedef internal::Input_frame_visitor<decltype(visitor), Geom_traits> Frame_visitor;
-    typedef internal::Evolution_run_visitor<Frame_visitor, typename Part_evolution<Geom_traits>::Model> Run_visitor;
     struct Run
     {
       std::unique_ptr<const internal::Point_normalization<Geom_traits>> normalization; // (run 0: `normalization`)
       std::vector<Point_3> normalized;
       std::unique_ptr<Part_evolution<Geom_traits>> evolution;
       Evolution_status status;
-      Run_visitor heard; // (run 0: none)
+      internal::Recorded_evolution_visitor<Model> heard; // (run 0: nothing)
     };
     const std::size_t number_of_runs = evolution_settings.evolution_runs;
     // (it outlives the runs: their fitters run their blocks on its threads)
     const internal::Point_blocks run_threads(fitting.number_of_threads);
     std::vector<Run> runs(number_of_runs);
-    // Concurrent runs call the callback one at a time; once it has returned
-    // false it is not called again, and every run stops at its next iteration.
-    std::mutex callback_mutex;
-    bool stopped = false;
-    std::function<bool(double)> run_callback = callback;
-    if(callback && number_of_runs > 1)
-      run_callback = [&](double fraction) {
-        const std::lock_guard<std::mutex> lock(callback_mutex);
-        stopped = stopped || !callback(fraction);
-        return !stopped;
-      };
+    internal::Shared_callback run_callback(callback);
     const auto frame_of = [&](std::size_t r) -> const internal::Point_normalization<Geom_traits>& {
       return r > 0 ? *runs[r].normalization : *normalization;
     };
@@ -454,19 +443,18 @@ auto fit_blended_shape(const PointRange& points, const NamedParameters& np = CGA
         run.evolution->set_described_points(fitted);
       if(r == 0)
       {
-        Frame_visitor live{visitor, *normalization, double(run.evolution->described_points())};
-        Run_visitor told(&live);
-        run.status = run.evolution->run(told, run_callback);
+        Frame_visitor live(visitor, *normalization, double(run.evolution->described_points()));
+        run.status = run.evolution->run(live, run_callback.function());
       }
       else
-        run.status = run.evolution->run(run.heard, run_callback);
+        run.status = run.evolution->run(run.heard, run_callback.function());
     });
     std::unique_ptr<Part_evolution<Geom_traits>> evolution;
     for(std::size_t r = 0; r < number_of_runs; ++r)
     {
       Run& run = runs[r];
       const double n = double(run.evolution->described_points());
-      Frame_visitor run_visitor{visitor, frame_of(r), n};
+      Frame_visitor run_visitor(visitor, frame_of(r), n);
       run.heard.replay(run_visitor);
       const Evolution_status& status = run.status;
       iterations += status.iterations;
@@ -498,9 +486,9 @@ auto fit_blended_shape(const PointRange& points, const NamedParameters& np = CGA
     if(sampled && result.evolution_run > 0) // (the final fit's starts are found among the kept run's points)
       coordinates = internal::coordinates_of(normalized);
     const double n = double(evolution->described_points());
-    Frame_visitor input_visitor{visitor, *normalization, n};
-    // (the fits' code is compiled for this visitor type already)
-    Run_visitor told(&input_visitor);
+    Frame_visitor frame_visitor(visitor, *normalization, n);
+    // (the fits' code is compiled for this type already: that of evolution's visitors)
+    internal::Evolution_listener<Model>& input_visitor = frame_visitor;
     for(const Evolution_event& e : evolution->events())
       result.events.push_back(internal::event_in_input_unit(e, normalization->scale(), n));
     if(evolution->model().shape().number_of_components() > 1)
@@ -549,7 +537,7 @@ auto fit_blended_shape(const PointRange& points, const NamedParameters& np = CGA
         {
           internal::notify_phase(input_visitor, Evolution_phase::Fit_to_rest,
                                  evolution->model().shape().number_of_components());
-          rest = final_fit->run(told, callback);
+          rest = final_fit->run(input_visitor, callback);
           iterations += rest.iterations;
           iterations_on_all_points += rest.iterations;
           result.status.converged = rest.converged;
