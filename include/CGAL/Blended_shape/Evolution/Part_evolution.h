@@ -210,7 +210,7 @@ public:
 // A visitor heard through Evolution_listener: its evolution hooks are
 // called if it has them (notify_phase(), notify_event()).
 template <class Visitor, class Model>
-class Evolution_listener_of final : public Evolution_listener<Model>
+class Evolution_listener_of : public Evolution_listener<Model>
 {
 public:
   explicit Evolution_listener_of(Visitor& visitor) : m_visitor(visitor) {}
@@ -224,7 +224,7 @@ public:
   void on_undo(const Evolution_event& e, const Model& model) override { notify_event(m_visitor, e, model); }
   void on_remove(const Evolution_event& e, const Model& model) override { notify_event(m_visitor, e, model); }
 
-private:
+protected:
   Visitor& m_visitor;
 };
 

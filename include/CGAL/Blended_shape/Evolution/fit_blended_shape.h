@@ -104,21 +104,16 @@ Deformable_blended_model<GeomTraits> with_blending_regions_held(const Deformable
 // Passes the hooks of an evolution on normalized points to `visitor` with
 // the events and models in the frame of the input.
 template <class Visitor, class GeomTraits>
-class Input_frame_visitor final : public Evolution_listener<Deformable_blended_model<GeomTraits>>
+class Input_frame_visitor final : public Evolution_listener_of<Visitor, Deformable_blended_model<GeomTraits>>
 {
 public:
   typedef Deformable_blended_model<GeomTraits> Model;
 
   Input_frame_visitor(Visitor& visitor, const Point_normalization<GeomTraits>& normalization, double number_of_points)
-    : m_visitor(visitor), m_normalization(normalization), m_number_of_points(number_of_points)
+    : Evolution_listener_of<Visitor, Model>(visitor), m_normalization(normalization),
+      m_number_of_points(number_of_points)
   {}
 
-  void on_phase(Fitting_phase phase, std::size_t iteration) override { m_visitor.on_phase(phase, iteration); }
-  void on_iteration(std::size_t iteration, double energy, std::size_t points_used) override
-  {
-    m_visitor.on_iteration(iteration, energy, points_used);
-  }
-  void on_evolution_phase(Evolution_phase phase, std::size_t parts) override { notify_phase(m_visitor, phase, parts); }
   void on_split(const Evolution_event& e, const Model& model) override { notify(e, model); }
   void on_undo(const Evolution_event& e, const Model& model) override { notify(e, model); }
   void on_remove(const Evolution_event& e, const Model& model) override { notify(e, model); }
@@ -126,11 +121,10 @@ public:
 private:
   void notify(const Evolution_event& e, const Model& model)
   {
-    notify_event(m_visitor, event_in_input_unit(e, m_normalization.scale(), m_number_of_points),
+    notify_event(this->m_visitor, event_in_input_unit(e, m_normalization.scale(), m_number_of_points),
                  m_normalization.model_from_normalized(model));
   }
 
-  Visitor& m_visitor;
   const Point_normalization<GeomTraits>& m_normalization;
   double m_number_of_points;
 };
