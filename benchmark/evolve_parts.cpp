@@ -8,11 +8,13 @@
 // distance to the mesh scanned (over the points' diagonal; "-" for data
 // without a mesh), and the seconds.
 //
-//   evolve_parts [--threads N] [--evolution-points N] [--splits forces|creases|both|branches] [--meshes-only]
+//   evolve_parts [--threads N] [--evolution-points N] [--splits forces|creases|both|branches]
+//                [--blend-stages N] [--stage-iterations N] [--meshes-only]
 //
 // --evolution-points N: Evolution_settings::maximum_evolution_points (default
 // 4000; 0: evolution on all points). --splits: Evolution_settings::split_source
-// (default creases).
+// (default creases). --blend-stages N, --stage-iterations N:
+// Evolution_settings::blend_stages and intermediate_stage_iterations.
 //
 // Data: the box/cylinder CAD object scanned from the default camera (the
 // paper's Figure 18 first row), the bundled real mug scan, an ellipsoid
@@ -87,6 +89,8 @@ Scanned_mesh mesh_scan(const std::string& file)
 
 std::size_t evolution_points = BS::Evolution_settings().maximum_evolution_points; // --evolution-points
 BS::Split_source split_source = BS::Evolution_settings().split_source;             // --splits
+std::size_t blend_stages = BS::Evolution_settings().blend_stages;                     // --blend-stages
+std::size_t stage_iterations = BS::Evolution_settings().intermediate_stage_iterations; // --stage-iterations
 
 // `reference`: the mesh scanned, if any (the Chamfer column).
 void evolve(const std::string& name, const std::vector<K::Point_3>& points, std::size_t threads,
@@ -94,9 +98,13 @@ void evolve(const std::string& name, const std::vector<K::Point_3>& points, std:
 {
   const auto r = BS::fit_blended_shape(
     points, BS::parameters::reference_mesh(
-              reference, BS::parameters::split_source(
-                           split_source, BS::parameters::maximum_evolution_points(
-                                           evolution_points, BS::parameters::number_of_threads(threads)))));
+              reference,
+              BS::parameters::split_source(
+                split_source, BS::parameters::blend_stages(
+                                blend_stages, BS::parameters::intermediate_stage_iterations(
+                                                stage_iterations, BS::parameters::maximum_evolution_points(
+                                                                    evolution_points,
+                                                                    BS::parameters::number_of_threads(threads)))))));
   // The least-squares RMS of evolution: before, that of its start; after,
   // that of the last split kept, part removed or revert (the events measure
   // both; a removal is measured before the model is fitted to rest again).
@@ -160,6 +168,12 @@ int main(int argc, char** argv)
     else if(std::strcmp(argv[i], "--evolution-points") == 0 && i + 1 < argc &&
             blended_shape_benchmark::parse_count(argv[i + 1], evolution_points))
       ++i;
+    else if(std::strcmp(argv[i], "--blend-stages") == 0 && i + 1 < argc &&
+            blended_shape_benchmark::parse_count(argv[i + 1], blend_stages) && blend_stages >= 1)
+      ++i;
+    else if(std::strcmp(argv[i], "--stage-iterations") == 0 && i + 1 < argc &&
+            blended_shape_benchmark::parse_count(argv[i + 1], stage_iterations) && stage_iterations >= 1)
+      ++i;
     else if(std::strcmp(argv[i], "--splits") == 0 && i + 1 < argc && (source = BS::split_source_from_name(argv[i + 1])))
     {
       split_source = *source;
@@ -167,12 +181,14 @@ int main(int argc, char** argv)
     }
     else
     {
-      std::cerr << "usage: evolve_parts [--threads N] [--evolution-points N] [--splits forces|creases|both|branches] [--meshes-only]\n";
+      std::cerr << "usage: evolve_parts [--threads N] [--evolution-points N] [--splits forces|creases|both|branches] "
+                   "[--blend-stages N] [--stage-iterations N] [--meshes-only]\n";
       return 2;
     }
   }
   std::cout << blended_shape_benchmark::machine_description() << ", " << threads << " thread(s), splits from "
-            << BS::split_source_name(split_source) << "\n\n";
+            << BS::split_source_name(split_source) << ", blend stages " << blend_stages << ", at most "
+            << stage_iterations << " iterations each but the last\n\n";
   const char* header = "| data | points | least-squares RMS/diag % before | after | parts | result RMS/diag % | "
                        "Chamfer / diagonal | events | iterations | seconds |\n"
                        "|---|---:|---:|---:|---:|---:|---:|---|---:|---:|\n";
