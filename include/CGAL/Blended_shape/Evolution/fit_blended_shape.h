@@ -151,18 +151,17 @@ public:
   {
     record([=](Evolution_listener<Model>& v) { v.on_evolution_phase(phase, parts); });
   }
-  // (each event with a copy of its model)
   void on_split(const Evolution_event& e, const Model& model) override
   {
-    record([e, model](Evolution_listener<Model>& v) { v.on_split(e, model); });
+    record_event(&Evolution_listener<Model>::on_split, e, model);
   }
   void on_undo(const Evolution_event& e, const Model& model) override
   {
-    record([e, model](Evolution_listener<Model>& v) { v.on_undo(e, model); });
+    record_event(&Evolution_listener<Model>::on_undo, e, model);
   }
   void on_remove(const Evolution_event& e, const Model& model) override
   {
-    record([e, model](Evolution_listener<Model>& v) { v.on_remove(e, model); });
+    record_event(&Evolution_listener<Model>::on_remove, e, model);
   }
 
   void replay(Evolution_listener<Model>& visitor) const
@@ -172,10 +171,17 @@ public:
   }
 
 private:
+  typedef void (Evolution_listener<Model>::*Event_hook)(const Evolution_event&, const Model&);
+
   template <class F>
   void record(F&& f)
   {
     m_heard.emplace_back(std::forward<F>(f));
+  }
+  // An event is replayed with a copy of the model it was heard with.
+  void record_event(Event_hook hook, const Evolution_event& e, const Model& model)
+  {
+    record([hook, e, model](Evolution_listener<Model>& v) { (v.*hook)(e, model); });
   }
 
   std::vector<std::function<void(Evolution_listener<Model>&)>> m_heard;
