@@ -9,12 +9,18 @@
 // without a mesh), and the seconds.
 //
 //   evolve_parts [--threads N] [--evolution-points N] [--splits forces|creases|both|branches]
-//                [--blend-stages N] [--stage-iterations N] [--meshes-only]
+//                [--blend-stages N] [--stage-iterations N] [--first-split-stages N]
+//                [--first-split-stage-iterations N] [--input-scale S] [--meshes-only]
 //
 // --evolution-points N: Evolution_settings::maximum_evolution_points (default
 // 4000; 0: evolution on all points). --splits: Evolution_settings::split_source
-// (default creases). --blend-stages N, --stage-iterations N:
-// Evolution_settings::blend_stages and intermediate_stage_iterations.
+// (default creases). --blend-stages N, --stage-iterations N,
+// --first-split-stages N, --first-split-stage-iterations N:
+// Evolution_settings::blend_stages, intermediate_stage_iterations,
+// first_split_blend_stages and first_split_stage_iterations.
+// --input-scale S: every row's points (and the mesh scanned, for the
+// Chamfer distance) multiplied by S > 0 about the origin, as in
+// reproduce_paper (S = 1 + 1e-7, 1 + 2e-7, ...: the paths that rounding picks).
 //
 // Data: the box/cylinder CAD object scanned from the default camera (the
 // paper's Figure 18 first row), the bundled real mug scan, an ellipsoid
@@ -25,6 +31,7 @@
 // (cross, tripod, spool, hammer, Spot the cow), each scanned from the
 // default camera, with the parts a person would name.
 #include "benchmark_util.h"
+#include "stage_options.h"
 
 #include <CGAL/Blended_shape/Evolution/fit_blended_shape.h>
 #include <CGAL/Blended_shape/IO/read_points.h>
@@ -37,6 +44,7 @@
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 
 #include <CGAL/Bbox_3.h>
+#include <CGAL/Polygon_mesh_processing/transform.h>
 
 #include <chrono>
 #include <cmath>
@@ -46,6 +54,7 @@
 #include <iomanip>
 #include <iostream>
 #include <random>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -89,22 +98,31 @@ Scanned_mesh mesh_scan(const std::string& file)
 
 std::size_t evolution_points = BS::Evolution_settings().maximum_evolution_points; // --evolution-points
 BS::Split_source split_source = BS::Evolution_settings().split_source;             // --splits
-std::size_t blend_stages = BS::Evolution_settings().blend_stages;                     // --blend-stages
-std::size_t stage_iterations = BS::Evolution_settings().intermediate_stage_iterations; // --stage-iterations
+blended_shape_benchmark::Stage_options stages;                                      // --blend-stages ...
+double input_scale = 1.;                                                           // --input-scale
 
 // `reference`: the mesh scanned, if any (the Chamfer column).
-void evolve(const std::string& name, const std::vector<K::Point_3>& points, std::size_t threads,
+void evolve(const std::string& name, std::vector<K::Point_3> points, std::size_t threads,
             const Mesh* reference = nullptr)
 {
+  std::optional<Mesh> scaled_reference;
+  if(input_scale != 1.)
+  {
+    const K::Aff_transformation_3 scaling(CGAL::SCALING, input_scale);
+    for(K::Point_3& p : points)
+      p = scaling(p);
+    if(reference)
+    {
+      scaled_reference = *reference;
+      CGAL::Polygon_mesh_processing::transform(scaling, *scaled_reference);
+      reference = &*scaled_reference;
+    }
+  }
   const auto r = BS::fit_blended_shape(
     points, BS::parameters::reference_mesh(
-              reference,
-              BS::parameters::split_source(
-                split_source, BS::parameters::blend_stages(
-                                blend_stages, BS::parameters::intermediate_stage_iterations(
-                                                stage_iterations, BS::parameters::maximum_evolution_points(
-                                                                    evolution_points,
-                                                                    BS::parameters::number_of_threads(threads)))))));
+              reference, BS::parameters::split_source(
+                           split_source, stages.named_parameters(BS::parameters::maximum_evolution_points(
+                                           evolution_points, BS::parameters::number_of_threads(threads))))));
   // The least-squares RMS of evolution: before, that of its start; after,
   // that of the last split kept, part removed or revert (the events measure
   // both; a removal is measured before the model is fitted to rest again).
@@ -168,11 +186,9 @@ int main(int argc, char** argv)
     else if(std::strcmp(argv[i], "--evolution-points") == 0 && i + 1 < argc &&
             blended_shape_benchmark::parse_count(argv[i + 1], evolution_points))
       ++i;
-    else if(std::strcmp(argv[i], "--blend-stages") == 0 && i + 1 < argc &&
-            blended_shape_benchmark::parse_count(argv[i + 1], blend_stages) && blend_stages >= 1)
-      ++i;
-    else if(std::strcmp(argv[i], "--stage-iterations") == 0 && i + 1 < argc &&
-            blended_shape_benchmark::parse_count(argv[i + 1], stage_iterations) && stage_iterations >= 1)
+    else if(stages.parse(argc, argv, i)) {}
+    else if(std::strcmp(argv[i], "--input-scale") == 0 && i + 1 < argc &&
+            blended_shape_benchmark::parse_number(argv[i + 1], input_scale) && input_scale > 0.)
       ++i;
     else if(std::strcmp(argv[i], "--splits") == 0 && i + 1 < argc && (source = BS::split_source_from_name(argv[i + 1])))
     {
@@ -182,13 +198,19 @@ int main(int argc, char** argv)
     else
     {
       std::cerr << "usage: evolve_parts [--threads N] [--evolution-points N] [--splits forces|creases|both|branches] "
-                   "[--blend-stages N] [--stage-iterations N] [--meshes-only]\n";
+                   << blended_shape_benchmark::Stage_options::usage << " [--input-scale S] [--meshes-only]\n";
       return 2;
     }
   }
   std::cout << blended_shape_benchmark::machine_description() << ", " << threads << " thread(s), splits from "
-            << BS::split_source_name(split_source) << ", blend stages " << blend_stages << ", at most "
-            << stage_iterations << " iterations each but the last\n\n";
+            << BS::split_source_name(split_source) << ", " << stages.description();
+  if(input_scale != 1.)
+  {
+    std::ostringstream scale;
+    scale << std::fixed << std::setprecision(10) << input_scale;
+    std::cout << ", input scaled by " << scale.str();
+  }
+  std::cout << "\n\n";
   const char* header = "| data | points | least-squares RMS/diag % before | after | parts | result RMS/diag % | "
                        "Chamfer / diagonal | events | iterations | seconds |\n"
                        "|---|---:|---:|---:|---:|---:|---:|---|---:|---:|\n";

@@ -8,8 +8,9 @@
 // ours. Prints Markdown; --csv FILE also writes CSV.
 //
 //   reproduce_paper [--evolve] [--splits forces|creases|both|branches] [--evolution-points N] [--robust] [--threads N]
-//                   [--seed N] [--area-weight W] [--blend-stages N] [--stage-iterations N] [--runs N]
-//                   [--first-sweep] [--input-scale S] [--csv FILE] [--markdown FILE]
+//                   [--seed N] [--area-weight W] [--blend-stages N] [--stage-iterations N]
+//                   [--first-split-stages N] [--first-split-stage-iterations N] [--runs N] [--first-sweep]
+//                   [--input-scale S] [--csv FILE] [--markdown FILE]
 //
 // The fits use the paper's least squares (Robust_weighting::None): its data
 // have no strays, and the robust default may take a part of a multi-part
@@ -26,9 +27,11 @@
 // --evolution-points N: Evolution_settings::maximum_evolution_points (default
 // 4000; 0: evolution on all points). --splits: Evolution_settings::split_source
 // (default creases). --area-weight W: Fitting_settings::area_weight (default
-// 0: the paper's fit, no area term). --blend-stages N, --stage-iterations N:
-// Evolution_settings::blend_stages (default 4) and
-// intermediate_stage_iterations (default 30). --runs N:
+// 0: the paper's fit, no area term). --blend-stages N, --stage-iterations N,
+// --first-split-stages N, --first-split-stage-iterations N:
+// Evolution_settings::blend_stages (default 4), intermediate_stage_iterations
+// (default 30), first_split_blend_stages (default 2) and
+// first_split_stage_iterations (default 8). --runs N:
 // Evolution_settings::evolution_runs (default 1).
 // --first-sweep (with --evolve): for each evolved model with blends, a
 // second table on its first closest-point sweep (a fitter constructed on
@@ -51,6 +54,7 @@
 // point, one thread, best of 3): the floor of an iteration, which needs at
 // least one such sweep.
 #include "benchmark_util.h"
+#include "stage_options.h"
 
 #include <CGAL/Blended_shape/Scanning/CAD_objects.h>
 #include <CGAL/Blended_shape/Scanning/Range_scan_simulator.h>
@@ -259,8 +263,7 @@ int main(int argc, char** argv)
   double input_scale = 1.;
   bool robust = false, evolve = false, first_sweep = false;
   std::size_t evolution_points = BS::Evolution_settings().maximum_evolution_points;
-  std::size_t blend_stages = BS::Evolution_settings().blend_stages;
-  std::size_t stage_iterations = BS::Evolution_settings().intermediate_stage_iterations;
+  BB::Stage_options stages;
   std::size_t runs = BS::Evolution_settings().evolution_runs;
   BS::Split_source split_source = BS::Evolution_settings().split_source;
   for(int i = 1; i < argc; ++i)
@@ -284,12 +287,7 @@ int main(int argc, char** argv)
     else if(std::strcmp(argv[i], "--evolution-points") == 0 && i + 1 < argc &&
             BB::parse_count(argv[i + 1], evolution_points))
       ++i;
-    else if(std::strcmp(argv[i], "--blend-stages") == 0 && i + 1 < argc && BB::parse_count(argv[i + 1], blend_stages) &&
-            blend_stages >= 1)
-      ++i;
-    else if(std::strcmp(argv[i], "--stage-iterations") == 0 && i + 1 < argc &&
-            BB::parse_count(argv[i + 1], stage_iterations) && stage_iterations >= 1)
-      ++i;
+    else if(stages.parse(argc, argv, i)) {}
     else if(std::strcmp(argv[i], "--runs") == 0 && i + 1 < argc && BB::parse_count(argv[i + 1], runs) && runs >= 1)
       ++i;
     else if(std::strcmp(argv[i], "--splits") == 0 && i + 1 < argc && (source = BS::split_source_from_name(argv[i + 1])))
@@ -300,7 +298,7 @@ int main(int argc, char** argv)
     else
     {
       std::cerr << "usage: reproduce_paper [--evolve] [--splits forces|creases|both|branches] [--evolution-points N] [--robust] "
-                   "[--threads N] [--seed N] [--area-weight W] [--blend-stages N] [--stage-iterations N] [--runs N] [--first-sweep] "
+                   "[--threads N] [--seed N] [--area-weight W] " << BB::Stage_options::usage << " [--runs N] [--first-sweep] "
                    "[--input-scale S] [--csv FILE] [--markdown FILE]\n";
       return 2;
     }
@@ -358,8 +356,7 @@ int main(int argc, char** argv)
      << (robust ? "robust (Mixture, the default)" : "the paper's least squares") << "; area weight: " << area_weight
      << "; "
      << (evolve ? std::string("fit_blended_shape() (part evolution, splits from ") +
-                    BS::split_source_name(split_source) + "; blend stages " + std::to_string(blend_stages) +
-                    ", at most " + std::to_string(stage_iterations) + " iterations each but the last; " +
+                    BS::split_source_name(split_source) + "; " + stages.description() + "; " +
                     std::to_string(runs) + (runs == 1 ? " run)" : " runs)")
                 : std::string("fit_superquadric() (one superquadric)")) << "\n\n"
      << "| data | points | param (paper / ours) | iter (paper / ours: all, on all points) | RMS_1,2,3 % paper | RMS_1,2,3 % ours "
@@ -383,10 +380,8 @@ int main(int argc, char** argv)
     if(evolve)
     {
       const auto evolution_np = BS::parameters::split_source(
-        split_source, BS::parameters::blend_stages(
-                        blend_stages, BS::parameters::intermediate_stage_iterations(
-                                        stage_iterations, BS::parameters::evolution_runs(
-                                                            runs, BS::parameters::maximum_evolution_points(evolution_points, np)))));
+        split_source, stages.named_parameters(BS::parameters::evolution_runs(
+                        runs, BS::parameters::maximum_evolution_points(evolution_points, np))));
       const auto r = BS::fit_blended_shape(e.points, BS::parameters::reference_mesh(reference, evolution_np));
       f.metrics = r.metrics;
       f.parts = r.number_of_parts();

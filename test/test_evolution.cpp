@@ -389,6 +389,30 @@ struct Counting_visitor : BS::Default_evolution_visitor
   }
 };
 
+// A visitor that writes down the iterations of each fit of the first split
+// (from the Split_fit phase of a two-part model to its event) to `fits`
+// (shared by its copies).
+struct First_split_fits_visitor : BS::Default_evolution_visitor
+{
+  std::vector<std::size_t>* fits;
+  bool in_split = false;
+  void on_evolution_phase(BS::Evolution_phase p, std::size_t parts)
+  {
+    in_split = p == BS::Evolution_phase::Split_fit && parts == 2 && fits->empty();
+  }
+  void on_iteration(std::size_t iteration, double, std::size_t)
+  {
+    if(in_split && iteration == 1)
+      fits->push_back(0);
+    if(in_split && !fits->empty())
+      ++fits->back();
+  }
+  template <class Model>
+  void on_split(const BS::Evolution_event&, const Model&) { in_split = false; }
+  template <class Model>
+  void on_undo(const BS::Evolution_event&, const Model&) { in_split = false; }
+};
+
 // A visitor that writes down every hook it hears, with its arguments (the
 // energies and description lengths to the bit), to `heard` (shared by its
 // copies), to compare what two calls told their visitors.
@@ -681,40 +705,29 @@ void test_evolution_limits()
              "a split stopped while fitting was not undone exactly");
   }
 
-  auto refused = [&](BS::Evolution_settings settings, const std::string& expected) {
-    BS_CHECK_REFUSED(std::invalid_argument, evolution_of<K>(points, settings), expected);
+  // the default settings with one member set to `value`: refused, the message naming it
+  auto refused_member = [&](auto member, auto value, const std::string& expected) {
+    BS::Evolution_settings bad;
+    bad.*member = value;
+    BS_CHECK_REFUSED(std::invalid_argument, evolution_of<K>(points, bad), expected);
   };
-  BS::Evolution_settings bad;
-  bad.maximum_number_of_parts = 0;
-  refused(bad, "maximum_number_of_parts");
-  bad = BS::Evolution_settings();
-  bad.target_accuracy = std::nan("");
-  refused(bad, "target_accuracy");
-  bad = BS::Evolution_settings();
-  bad.maximum_split_tries = 0;
-  refused(bad, "maximum_split_tries");
-  bad = BS::Evolution_settings();
-  bad.threshold_factor = -1.;
-  refused(bad, "threshold_factor");
-  bad = BS::Evolution_settings();
-  bad.blend_stages = 0;
-  refused(bad, "blend_stages");
-  bad = BS::Evolution_settings();
-  bad.intermediate_stage_iterations = 0;
-  refused(bad, "intermediate_stage_iterations");
-  bad = BS::Evolution_settings();
-  bad.evolution_runs = 0;
-  refused(bad, "evolution_runs");
-  bad = BS::Evolution_settings();
-  bad.split_source = static_cast<BS::Split_source>(7);
-  refused(bad, "split_source");
+  typedef BS::Evolution_settings S;
+  refused_member(&S::maximum_number_of_parts, std::size_t(0), "maximum_number_of_parts");
+  refused_member(&S::target_accuracy, std::nan(""), "target_accuracy");
+  refused_member(&S::maximum_split_tries, std::size_t(0), "maximum_split_tries");
+  refused_member(&S::threshold_factor, -1., "threshold_factor");
+  refused_member(&S::blend_stages, std::size_t(0), "blend_stages");
+  refused_member(&S::intermediate_stage_iterations, std::size_t(0), "intermediate_stage_iterations");
+  refused_member(&S::first_split_blend_stages, std::size_t(0), "first_split_blend_stages");
+  refused_member(&S::first_split_stage_iterations, std::size_t(0), "first_split_stage_iterations");
+  refused_member(&S::evolution_runs, std::size_t(0), "evolution_runs");
+  refused_member(&S::split_source, static_cast<BS::Split_source>(7), "split_source");
   for(BS::Split_source source : {BS::Split_source::Force_regions, BS::Split_source::Crease_segments, BS::Split_source::Both})
     BS_CHECK(BS::split_source_from_name(BS::split_source_name(source)) == source,
              "the split source named " << BS::split_source_name(source) << " is not found by its name");
   BS_CHECK(!BS::split_source_from_name("sideways"), "a split source named sideways");
-  bad = BS::Evolution_settings();
-  bad.maximum_evolution_points = 10;
-  refused(bad, "maximum_evolution_points must be 0 (evolution on all points) or at least 100");
+  refused_member(&S::maximum_evolution_points, std::size_t(10),
+                 "maximum_evolution_points must be 0 (evolution on all points) or at least 100");
   // a reference mesh without faces, before any fitting (at once: no callback call)
   const CGAL::Surface_mesh<typename K::Point_3> empty;
   std::size_t calls = 0;
@@ -1814,6 +1827,15 @@ void test_crease_evolution()
   BS_CHECK(stopped.status.aborted && stopped.number_of_parts() == 1 && stopped.model.shape().number_of_blends() == 0,
            "stopped while blending the part in: aborted " << stopped.status.aborted << ", "
                                                           << stopped.number_of_parts() << " parts");
+  // the first split's stages: Evolution_settings::first_split_blend_stages
+  // fits, each but the last capped at first_split_stage_iterations
+  std::vector<std::size_t> stage_iterations;
+  BS::fit_blended_shape(points, BS::parameters::first_split_blend_stages(
+                                  std::size_t(3), BS::parameters::first_split_stage_iterations(
+                                                    std::size_t(2), BS::parameters::maximum_number_of_parts(std::size_t(2))))
+                                  .visitor(First_split_fits_visitor{{}, &stage_iterations}));
+  BS_CHECK(stage_iterations.size() == 3 && stage_iterations[0] <= 2 && stage_iterations[1] <= 2,
+           "the first split in 3 stages capped at 2 iterations: " << stage_iterations.size() << " fits heard");
   check_evolution_runs(points, r);
 }
 
@@ -1961,17 +1983,20 @@ void test_evolution_settings_from_named_parameters()
              none.maximum_evolution_points == d.maximum_evolution_points && none.split_source == d.split_source &&
              none.blend_stages == d.blend_stages &&
              none.intermediate_stage_iterations == d.intermediate_stage_iterations &&
+             none.first_split_blend_stages == d.first_split_blend_stages &&
+             none.first_split_stage_iterations == d.first_split_stage_iterations &&
              none.evolution_runs == d.evolution_runs && d.evolution_runs == 1,
            "evolution settings without named parameters differ from the defaults");
   const BS::Evolution_settings s = BS::evolution_settings_from_named_parameters(
     BSP::maximum_number_of_parts(std::size_t(5), BSP::target_accuracy(0.01, BSP::maximum_split_tries(std::size_t(2),
     BSP::threshold_factor(2.5, BSP::analysis_resolution(12, BSP::maximum_evolution_points(std::size_t(500),
     BSP::split_source(BS::Split_source::Both, BSP::blend_stages(std::size_t(3),
-    BSP::intermediate_stage_iterations(std::size_t(7), BSP::evolution_runs(std::size_t(3))))))))))));
+    BSP::intermediate_stage_iterations(std::size_t(7), BSP::first_split_blend_stages(std::size_t(5),
+    BSP::first_split_stage_iterations(std::size_t(6), BSP::evolution_runs(std::size_t(3))))))))))))));
   BS_CHECK(s.maximum_number_of_parts == 5 && s.target_accuracy == 0.01 && s.maximum_split_tries == 2 &&
              s.threshold_factor == 2.5 && s.analysis_resolution == 12 && s.maximum_evolution_points == 500 &&
              s.split_source == BS::Split_source::Both && s.blend_stages == 3 && s.intermediate_stage_iterations == 7 &&
-             s.evolution_runs == 3,
+             s.first_split_blend_stages == 5 && s.first_split_stage_iterations == 6 && s.evolution_runs == 3,
            "a named parameter did not reach its member of Evolution_settings");
 }
 

@@ -56,6 +56,9 @@ const char* usage =
   "                       all), then fit the final model to all of them\n"
   "  --blend-stages N     a crease split's part comes in over N stages (default 4; 1: at once)\n"
   "  --stage-iterations N iteration limit of each of those stages but the last (default 30)\n"
+  "  --first-split-stages N, --first-split-stage-iterations N\n"
+  "                       the same for the first split (a part on a one-part base;\n"
+  "                       defaults 2 and 8)\n"
   "  --runs N             evolve N times, run r on the points scaled by 1 + r 2^-23 about their\n"
   "                       centre (other rounding, other paths; default 1), and keep the run\n"
   "                       whose model describes the points in the fewest nats (see the manual,\n"
@@ -282,7 +285,8 @@ int main(int argc, char** argv)
   const auto options = tools::known_options({"--json", "--mesh", "--hierarchy", "--model", "--max-iterations", "--seed",
                                               "--threads", "--strays", "--reference", "--max-parts", "--trace",
                                               "--evolution-points", "--splits", "--area-weight", "--blend-stages",
-                                              "--stage-iterations", "--runs"},
+                                              "--stage-iterations", "--first-split-stages",
+                                              "--first-split-stage-iterations", "--runs"},
                                              {"--no-split", "--no-holes", "--quiet", "--robust", "--no-robust", "--explicit"});
   return tools::run_tool("blended_fit", usage, argc, argv, options, [](const tools::Command_line& line) {
     std::string input, json, mesh, hierarchy, model_file, strays, trace, reference_file;
@@ -291,6 +295,8 @@ int main(int argc, char** argv)
     std::size_t evolution_points = BS::Evolution_settings().maximum_evolution_points;
     std::size_t blend_stages = BS::Evolution_settings().blend_stages;
     std::size_t stage_iterations = BS::Evolution_settings().intermediate_stage_iterations;
+    std::size_t first_split_stages = BS::Evolution_settings().first_split_blend_stages;
+    std::size_t first_split_stage_iterations = BS::Evolution_settings().first_split_stage_iterations;
     std::size_t runs = BS::Evolution_settings().evolution_runs;
     unsigned int seed = 0;
     double area_weight = BS::Fitting_settings().area_weight;
@@ -332,6 +338,10 @@ int main(int argc, char** argv)
         blend_stages = std::size_t(tools::parse_integer_in(a, o.value, 1, 100));
       else if(a == "--stage-iterations")
         stage_iterations = std::size_t(tools::parse_integer_in(a, o.value, 1, 1000000));
+      else if(a == "--first-split-stages")
+        first_split_stages = std::size_t(tools::parse_integer_in(a, o.value, 1, 100));
+      else if(a == "--first-split-stage-iterations")
+        first_split_stage_iterations = std::size_t(tools::parse_integer_in(a, o.value, 1, 1000000));
       else if(a == "--runs")
         runs = std::size_t(tools::parse_integer_in(a, o.value, 1, 1000));
       else if(a == "--evolution-points")
@@ -393,13 +403,15 @@ int main(int argc, char** argv)
       BS::parameters::split_source(split_source,
       BS::parameters::blend_stages(blend_stages,
       BS::parameters::intermediate_stage_iterations(stage_iterations,
+      BS::parameters::first_split_blend_stages(first_split_stages,
+      BS::parameters::first_split_stage_iterations(first_split_stage_iterations,
       BS::parameters::evolution_runs(runs,
       BS::parameters::area_weight(area_weight,
       BS::parameters::maximum_evolution_points(evolution_points,
         BS::parameters::maximum_number_of_parts(max_parts,
         BS::parameters::number_of_threads(threads,
         BS::parameters::robust_weighting(robust ? BS::Robust_weighting::Mixture : BS::Robust_weighting::None,
-        BS::parameters::integrator(explicit_integrator ? BS::Integrator::Explicit : BS::Integrator::Gauss_newton)))))))))))
+        BS::parameters::integrator(explicit_integrator ? BS::Integrator::Explicit : BS::Integrator::Gauss_newton)))))))))))))
         .number_of_iterations(iterations)
         .random_seed(seed)
         .visitor(reporter));

@@ -260,7 +260,8 @@ split is kept:
    largest flux difference down, one per pair of regions), or both;
 3. for each proposal in turn: split (apply_split(), `h = 0`: no point of the
    surface moves; a crease segment's part comes in over
-   Evolution_settings::blend_stages stages), fit to rest, and keep the split if it pays for its
+   Evolution_settings::blend_stages stages, first_split_blend_stages for
+   the first split), fit to rest, and keep the split if it pays for its
    parameters, otherwise restore the model exactly and try the next one;
 4. after a split is kept, remove the parts that no longer pay for their
    parameters (remove_unpaid_parts()) and fit to rest again if any went.
@@ -586,8 +587,10 @@ public:
   to the segment's points as a gradual part (add_gradual_part(), in the
   region where the part meets the base, region_inside_part(), or where that
   has none the region propose_segment_split() gives on the base) and lowers
-  its `h` in `blend_stages` stages, each fitted with `h` and the part held
-  (for at most `intermediate_stage_iterations` iterations), then fits to rest
+  its `h` in `blend_stages` stages (`first_split_blend_stages` for the first
+  split), each fitted with `h` and the part held
+  (for at most `intermediate_stage_iterations` iterations, or
+  `first_split_stage_iterations`), then fits to rest
   with `h` and the part free, the region's curve held where the proposal
   put it: the part comes in by steps of `h` of `1 / blend_stages` (each
   moves the surface inside the region that share of the way from the base
@@ -960,7 +963,7 @@ private:
     for(std::size_t k = 1;; ++k)
     {
       const Fitting_status status = fit_to_rest_heard(visitor, callback);
-      if(status.aborted || k >= m_settings.blend_stages)
+      if(status.aborted || k >= stage_plan(m_fitter->model()).stages)
         return status;
       std::unique_ptr<Fitter> next = stage_fitter(m_fitter->model(), k + 1, fit_settings);
       next->start_from_foot_points_of(*m_fitter);
@@ -968,12 +971,31 @@ private:
     }
   }
 
-  // The fitter of stage k (from 1 to blend_stages) of blend_in_stages(),
+  struct Stage_plan
+  {
+    std::size_t stages;     // of blend_in_stages()
+    std::size_t iterations; // the iteration limit of each stage but the last
+  };
+
+  // The stages of the gradual part of `split` (the model whose last blend
+  // is that part): Evolution_settings::first_split_blend_stages and
+  // first_split_stage_iterations for the first split (a part on a one-part
+  // base, which with_gradual_part() fitted afresh to the points outside the
+  // part), blend_stages and intermediate_stage_iterations for later ones.
+  Stage_plan stage_plan(const Model& split) const
+  {
+    if(split.shape().number_of_components() == 2)
+      return {m_settings.first_split_blend_stages, m_settings.first_split_stage_iterations};
+    return {m_settings.blend_stages, m_settings.intermediate_stage_iterations};
+  }
+
+  // The fitter of stage k (from 1 to stage_plan().stages) of blend_in_stages(),
   // from `from` (the split model at h = 1 for the first stage, else the
   // last stage's model) and the settings of the fits before the split.
   std::unique_ptr<Fitter> stage_fitter(const Model& from, std::size_t k, const Fitting_settings& fit_settings) const
   {
-    const std::size_t stages = m_settings.blend_stages;
+    const Stage_plan plan = stage_plan(from);
+    const std::size_t stages = plan.stages;
     Blended_shape<GeomTraits> shape = from.shape();
     const std::size_t blend = shape.number_of_blends() - 1;
     const std::size_t h = shape.blend_offset(blend) + Ellipse_blending_region::H;
@@ -988,7 +1010,7 @@ private:
     shape.hold_blending_region(blend, true);
     Fitting_settings settings = fit_settings;
     if(k < stages)
-      settings.maximum_iterations = (std::min)(settings.maximum_iterations, m_settings.intermediate_stage_iterations);
+      settings.maximum_iterations = (std::min)(settings.maximum_iterations, plan.iterations);
     return std::make_unique<Fitter>(m_points, Model(shape, from.translation(), from.quaternion()), settings);
   }
 

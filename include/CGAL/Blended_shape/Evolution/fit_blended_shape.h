@@ -299,7 +299,8 @@ the first, the run kept is the best of those before it.
     `maximum_number_of_parts` (1: one superquadric), `target_accuracy`,
     `maximum_split_tries`, `threshold_factor`, `analysis_resolution`,
     `maximum_evolution_points`, `split_source`, `blend_stages`,
-    `intermediate_stage_iterations`, `evolution_runs`;
+    `intermediate_stage_iterations`, `first_split_blend_stages`,
+    `first_split_stage_iterations`, `evolution_runs`;
   - `point_map`, `geom_traits`, `try_all_axes`: as for fit_superquadric();
   - `reference_mesh` (a pointer to a `CGAL::Surface_mesh<Point_3>`): the
     result's metrics then hold the symmetric Chamfer distance of the model
