@@ -31,7 +31,7 @@
 // (cross, tripod, spool, hammer, Spot the cow), each scanned from the
 // default camera, with the parts a person would name.
 #include "benchmark_util.h"
-#include "stage_options.h"
+#include "evolution_options.h"
 
 #include <CGAL/Blended_shape/Evolution/fit_blended_shape.h>
 #include <CGAL/Blended_shape/IO/read_points.h>
@@ -44,7 +44,6 @@
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 
 #include <CGAL/Bbox_3.h>
-#include <CGAL/Polygon_mesh_processing/transform.h>
 
 #include <chrono>
 #include <cmath>
@@ -105,19 +104,10 @@ double input_scale = 1.;                                                        
 void evolve(const std::string& name, std::vector<K::Point_3> points, std::size_t threads,
             const Mesh* reference = nullptr)
 {
-  std::optional<Mesh> scaled_reference;
-  if(input_scale != 1.)
-  {
-    const K::Aff_transformation_3 scaling(CGAL::SCALING, input_scale);
-    for(K::Point_3& p : points)
-      p = scaling(p);
-    if(reference)
-    {
-      scaled_reference = *reference;
-      CGAL::Polygon_mesh_processing::transform(scaling, *scaled_reference);
-      reference = &*scaled_reference;
-    }
-  }
+  std::optional<Mesh> scaled_reference; // (--input-scale: a scaled copy of `reference`)
+  if(reference && input_scale != 1.)
+    reference = &scaled_reference.emplace(*reference);
+  blended_shape_benchmark::scale_input(input_scale, points, scaled_reference ? &*scaled_reference : nullptr);
   const auto r = BS::fit_blended_shape(
     points, BS::parameters::reference_mesh(
               reference, BS::parameters::split_source(

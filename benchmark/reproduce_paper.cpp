@@ -54,7 +54,7 @@
 // point, one thread, best of 3): the floor of an iteration, which needs at
 // least one such sweep.
 #include "benchmark_util.h"
-#include "stage_options.h"
+#include "evolution_options.h"
 
 #include <CGAL/Blended_shape/Scanning/CAD_objects.h>
 #include <CGAL/Blended_shape/Scanning/Range_scan_simulator.h>
@@ -68,8 +68,6 @@
 #include <CGAL/Blended_shape/internal/nearest_points.h>
 
 #include <CGAL/AABB_face_graph_triangle_primitive.h>
-#include <CGAL/Aff_transformation_3.h>
-#include <CGAL/Polygon_mesh_processing/transform.h>
 #include <CGAL/AABB_traits.h>
 #include <CGAL/AABB_tree.h>
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
@@ -337,17 +335,8 @@ int main(int argc, char** argv)
                            scan(m, BS::default_camera_for(m)), m});
   }
 
-  if(input_scale != 1.)
-  {
-    const K::Aff_transformation_3 scaling(CGAL::SCALING, input_scale);
-    for(Experiment& e : experiments)
-    {
-      for(K::Point_3& p : e.points)
-        p = scaling(p);
-      if(e.reference)
-        CGAL::Polygon_mesh_processing::transform(scaling, *e.reference);
-    }
-  }
+  for(Experiment& e : experiments)
+    BB::scale_input(input_scale, e.points, e.reference ? &*e.reference : nullptr);
 
   std::ostringstream md, cs, sweeps;
   md << "Machine: " << BB::machine_description() << "; threads: "

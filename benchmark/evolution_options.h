@@ -1,20 +1,24 @@
 // SPDX-License-Identifier: LGPL-3.0-or-later
-// The blending-stage options of the evolution benchmarks (reproduce_paper,
-// evolve_parts): --blend-stages N, --stage-iterations N,
+// Options shared by the evolution benchmarks (reproduce_paper, evolve_parts):
+// the blending stages (--blend-stages N, --stage-iterations N,
 // --first-split-stages N, --first-split-stage-iterations N, the members of
-// Evolution_settings of the same meaning (blend_stages,
+// Evolution_settings of the same meaning: blend_stages,
 // intermediate_stage_iterations, first_split_blend_stages,
-// first_split_stage_iterations).
-#ifndef BLENDED_SHAPE_BENCHMARK_STAGE_OPTIONS_H
-#define BLENDED_SHAPE_BENCHMARK_STAGE_OPTIONS_H
+// first_split_stage_iterations) and the input's scaling (--input-scale S).
+#ifndef BLENDED_SHAPE_BENCHMARK_EVOLUTION_OPTIONS_H
+#define BLENDED_SHAPE_BENCHMARK_EVOLUTION_OPTIONS_H
 
 #include "benchmark_util.h"
 
 #include <CGAL/Blended_shape/Evolution/Evolution_settings.h>
 #include <CGAL/Blended_shape/parameters.h>
 
+#include <CGAL/Aff_transformation_3.h>
+#include <CGAL/Polygon_mesh_processing/transform.h>
+
 #include <cstring>
 #include <string>
+#include <vector>
 
 namespace blended_shape_benchmark {
 
@@ -71,6 +75,23 @@ struct Stage_options
   }
 };
 
+// --input-scale S: `points` and, if not null, `mesh` (the mesh they were
+// scanned from, for the Chamfer distance) multiplied by `s` about the
+// origin; with s = 1 + 1e-7, 1 + 2e-7, ...: how much a result depends on a
+// change of its input far below its noise (the manual, Inputs changed by 1e-7).
+template <class Point, class Mesh>
+void scale_input(double s, std::vector<Point>& points, Mesh* mesh)
+{
+  if(s == 1.)
+    return;
+  typedef typename CGAL::Kernel_traits<Point>::Kernel Kernel;
+  const typename Kernel::Aff_transformation_3 scaling(CGAL::SCALING, s);
+  for(Point& p : points)
+    p = scaling(p);
+  if(mesh)
+    CGAL::Polygon_mesh_processing::transform(scaling, *mesh);
+}
+
 } // namespace blended_shape_benchmark
 
-#endif // BLENDED_SHAPE_BENCHMARK_STAGE_OPTIONS_H
+#endif // BLENDED_SHAPE_BENCHMARK_EVOLUTION_OPTIONS_H
