@@ -698,6 +698,7 @@ private:
     std::unique_ptr<Fitter> before;
     const bool gradual = proposal.segment != Split_proposal::none;
     std::vector<Chart_point> base_foot_points; // of a gradual part's base: where its fits start
+    Stage_plan plan{1, 0};                       // of a gradual part's stages
     if(gradual) // (its fits start with the base's)
       internal::notify_phase(visitor, Evolution_phase::Split_fit, m_fitter->model().shape().number_of_components() + 1);
     try
@@ -709,7 +710,8 @@ private:
       std::unique_ptr<Fitter> next;
       if(gradual)
       {
-        next = stage_fitter(*split, 1, m_fitter->settings());
+        plan = stage_plan(*split);
+        next = stage_fitter(*split, 1, plan, m_fitter->settings());
         next->start_from_chart_points(base_foot_points);
       }
       else
@@ -728,7 +730,7 @@ private:
       internal::notify_phase(visitor, Evolution_phase::Split_fit, m_fitter->model().shape().number_of_components());
     }
     const Fitting_status status =
-      gradual ? blend_in_stages(before->settings(), visitor, callback) : fit_to_rest_heard(visitor, callback);
+      gradual ? blend_in_stages(plan, before->settings(), visitor, callback) : fit_to_rest_heard(visitor, callback);
     const double msd_after = mean_squared_distance();
     e.description_length_after = description_length_of(msd_after, model());
     e.rms_after = std::sqrt(msd_after);
@@ -924,8 +926,26 @@ private:
     return members;
   }
 
+  struct Stage_plan
+  {
+    std::size_t stages;     // of blend_in_stages()
+    std::size_t iterations; // the iteration limit of each stage but the last
+  };
+
+  // The stages of the gradual part of `split` (the model whose last blend
+  // is that part): Evolution_settings::first_split_blend_stages and
+  // first_split_stage_iterations for the first split (a part on a one-part
+  // base, which with_gradual_part() fitted afresh to the points outside the
+  // part), blend_stages and intermediate_stage_iterations for later ones.
+  Stage_plan stage_plan(const Model& split) const
+  {
+    if(split.shape().number_of_components() == 2)
+      return {m_settings.first_split_blend_stages, m_settings.first_split_stage_iterations};
+    return {m_settings.blend_stages, m_settings.intermediate_stage_iterations};
+  }
+
   // Fits the model whose last blend is a gradual part at h = 1 to rest in
-  // blend_stages stages (Evolution_settings::blend_stages): h held at
+  // plan.stages stages (stage_plan() of that model): h held at
   // 1 - k / stages while the rest fits, then free from 0. Each stage moves
   // the surface by a bounded amount (the evolution stays gradual). The
   // steepness w is held with h (at 1, the smoothest blend): left free, the
@@ -952,49 +972,31 @@ private:
   // stages started from the tessellation give that scan the same model to
   // the 9th digit of its RMS, with one iteration more (2026-12-02): what
   // the carried foot points still save is the first step's search, so no
-  // test can tell them apart by the result. The stages before the last stop after
-  // Evolution_settings::intermediate_stage_iterations (the last fits to
-  // rest). `m_fitter` is the first stage's fitter (stage_fitter());
+  // test can tell them apart by the result. The stages before the last stop
+  // after plan.iterations (the last fits to rest). `m_fitter` is the first
+  // stage's fitter (stage_fitter(), with the same plan);
   // `fit_settings` are those of the fits before the split. Returns the last
   // fit's status (an aborted stage ends it).
-  Fitting_status blend_in_stages(const Fitting_settings& fit_settings, Listener& visitor,
+  Fitting_status blend_in_stages(const Stage_plan& plan, const Fitting_settings& fit_settings, Listener& visitor,
                                  const std::function<bool(double)>& callback)
   {
     for(std::size_t k = 1;; ++k)
     {
       const Fitting_status status = fit_to_rest_heard(visitor, callback);
-      if(status.aborted || k >= stage_plan(m_fitter->model()).stages)
+      if(status.aborted || k >= plan.stages)
         return status;
-      std::unique_ptr<Fitter> next = stage_fitter(m_fitter->model(), k + 1, fit_settings);
+      std::unique_ptr<Fitter> next = stage_fitter(m_fitter->model(), k + 1, plan, fit_settings);
       next->start_from_foot_points_of(*m_fitter);
       m_fitter = std::move(next);
     }
   }
 
-  struct Stage_plan
-  {
-    std::size_t stages;     // of blend_in_stages()
-    std::size_t iterations; // the iteration limit of each stage but the last
-  };
-
-  // The stages of the gradual part of `split` (the model whose last blend
-  // is that part): Evolution_settings::first_split_blend_stages and
-  // first_split_stage_iterations for the first split (a part on a one-part
-  // base, which with_gradual_part() fitted afresh to the points outside the
-  // part), blend_stages and intermediate_stage_iterations for later ones.
-  Stage_plan stage_plan(const Model& split) const
-  {
-    if(split.shape().number_of_components() == 2)
-      return {m_settings.first_split_blend_stages, m_settings.first_split_stage_iterations};
-    return {m_settings.blend_stages, m_settings.intermediate_stage_iterations};
-  }
-
-  // The fitter of stage k (from 1 to stage_plan().stages) of blend_in_stages(),
+  // The fitter of stage k (from 1 to plan.stages) of blend_in_stages(),
   // from `from` (the split model at h = 1 for the first stage, else the
   // last stage's model) and the settings of the fits before the split.
-  std::unique_ptr<Fitter> stage_fitter(const Model& from, std::size_t k, const Fitting_settings& fit_settings) const
+  std::unique_ptr<Fitter> stage_fitter(const Model& from, std::size_t k, const Stage_plan& plan,
+                                       const Fitting_settings& fit_settings) const
   {
-    const Stage_plan plan = stage_plan(from);
     const std::size_t stages = plan.stages;
     Blended_shape<GeomTraits> shape = from.shape();
     const std::size_t blend = shape.number_of_blends() - 1;
