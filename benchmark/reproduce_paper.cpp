@@ -31,7 +31,7 @@
 // --first-split-stages N, --first-split-stage-iterations N:
 // Evolution_settings::blend_stages (default 4), intermediate_stage_iterations
 // (default 30), first_split_blend_stages (default 2) and
-// first_split_stage_iterations (default 3). --runs N:
+// first_split_stage_iterations (default 1). --runs N:
 // Evolution_settings::evolution_runs (default 1).
 // --first-sweep (with --evolve): for each evolved model with blends, a
 // second table on its first closest-point sweep (a fitter constructed on

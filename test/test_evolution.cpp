@@ -1850,8 +1850,12 @@ void test_crease_evolution()
 // description lengths say. On this cross the evolved model is farther
 // from the points than the superquadric evolution started from (fitted to
 // all of them), which then replaces it: a revert, the last event, to one
-// part at rest, no farther from the points than the evolved model. Scans
-// of one superquadric, all around and from one side, stay one part.
+// part at rest, no farther from the points than the evolved model (with
+// the first split's stages of at most 3 iterations, the default until
+// 2026-12-06: with the single step of the default since, this cross's
+// evolution keeps 3 parts closer to the points than the superquadric, and
+// no revert would be tested). Scans of one superquadric, all around and
+// from one side, stay one part.
 template <class K>
 void test_branch_evolution()
 {
@@ -1859,7 +1863,8 @@ void test_branch_evolution()
   for(const auto& p : cross_of_two_bars_scan<K>(2500))
     if(CGAL::to_double(p.z()) > 0.)
       points.push_back(p);
-  const BS::Evolution_settings settings = splits_from(BS::Split_source::Branch_segments);
+  BS::Evolution_settings settings = splits_from(BS::Split_source::Branch_segments);
+  settings.first_split_stage_iterations = 3;
   BS::Part_evolution<K> evolution = evolution_of<K>(points, settings);
   const std::size_t kept = points.size() - evolution.isolated_points().size();
   const std::size_t central = evolution.joined_points().size();

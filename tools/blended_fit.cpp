@@ -58,7 +58,7 @@ const char* usage =
   "  --stage-iterations N iteration limit of each of those stages but the last (default 30)\n"
   "  --first-split-stages N, --first-split-stage-iterations N\n"
   "                       the same for the first split (a part on a one-part base;\n"
-  "                       defaults 2 and 3)\n"
+  "                       defaults 2 and 1)\n"
   "  --runs N             evolve N times, run r on the points scaled by 1 + r 2^-23 about their\n"
   "                       centre (other rounding, other paths; default 1), and keep the run\n"
   "                       whose model describes the points in the fewest nats (see the manual,\n"

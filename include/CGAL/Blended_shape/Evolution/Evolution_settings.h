@@ -126,11 +126,14 @@ struct Evolution_settings
   std::size_t first_split_blend_stages = 2;
   /// intermediate_stage_iterations for the first split (first_split_blend_stages):
   /// its iterations at `h` = 0.5 cost 3 to 5 times those of the last
-  /// stage. Over the same 18 inputs (the manual, the tried list), 3 against
-  /// 8: the box/cylinder scan the same 2 parts and RMS in 2.2 s against
-  /// 2.6 s; the mannequin's mean RMS_3 8.65 % against 9.86 %, the mugs'
-  /// within 0.2 point, all within the spread over the inputs.
-  std::size_t first_split_stage_iterations = 3;
+  /// stage, its first one most (its projections start from the base's foot
+  /// points). One step at `h` = 0.5, then `h` free from 0: over the same 18
+  /// inputs (the manual, the tried list), against 3 (and 3 against 8), the
+  /// box/cylinder scan the same 2 parts and RMS in 1.97 s against 2.12 s
+  /// (2.6 s with 8); the mannequin's mean RMS_3 9.12 % against 8.65 %
+  /// (9.86 %), the mugs' within 0.15 point, all within the spread over the
+  /// inputs, and the mannequin's median time 10.9 s against 14.9 s.
+  std::size_t first_split_stage_iterations = 1;
   /// How many times fit_blended_shape() evolves the model, each run on the
   /// points scaled by `1 + r 2^-23` about their centre (run `r = 0, 1, ...`;
   /// run 0 on the points as they are), from the same first fit; the run kept
