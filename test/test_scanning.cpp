@@ -6,6 +6,7 @@
 #include <CGAL/Blended_shape/Scanning/CAD_objects.h>
 #include <CGAL/Blended_shape/Scanning/Range_scan_simulator.h>
 
+#include "test_kernels.h"
 #include "test_util.h"
 #include "tool_test_util.h"
 
@@ -914,6 +915,7 @@ void test_bad_cad_parameters()
 // ---------------------------------------------------------------- command-line tools
 
 
+#ifdef BLENDED_SCAN_EXE // (not in sanitizer builds: see test/CMakeLists.txt)
 void test_tools(const Temp_dir& dir)
 {
   const int before = failures();
@@ -1044,59 +1046,50 @@ void test_tools(const Temp_dir& dir)
   }
   report("command_line_tools", before);
 }
+#endif
+
+// The checks that take a kernel, with `K`.
+template <class K>
+void run_kernel(const BS::CAD_mesh& box_cylinder, const BS::CAD_mesh& holed, const Temp_dir& dir)
+{
+  typedef typename K::Point_3 Point;
+  test_points_on_mesh_and_visible<K>("box_cylinder", convert<K>(box_cylinder), Point(3.5, 2.5, 3.));
+  test_points_on_mesh_and_visible<K>("two_holed_box", convert<K>(holed), Point(2., -3., 4.));
+  test_sphere_half_covered<K>(true);
+  test_sphere_half_covered<K>(false);
+  test_image_orientation<K>();
+  test_noise<K>();
+  test_dropout<K>();
+  test_multi_view<K>();
+  test_default_camera<K>();
+  test_bad_cameras<K>();
+  test_degenerate_faces<K>();
+  test_writers<K>(dir);
+}
 
 } // namespace
 
 int main()
 {
-  test_points_on_mesh_and_visible<SC>("box_cylinder", convert<SC>(BS::make_box_cylinder([] {
-                                        BS::Box_cylinder_parameters p;
-                                        p.segments = 16;
-                                        return p;
-                                      }())),
-                                      SC::Point_3(3.5, 2.5, 3.));
-  test_points_on_mesh_and_visible<EPICK>("box_cylinder", convert<EPICK>(BS::make_box_cylinder([] {
-                                           BS::Box_cylinder_parameters p;
-                                           p.segments = 16;
-                                           return p;
-                                         }())),
-                                         EPICK::Point_3(3.5, 2.5, 3.));
   {
-    BS::Two_holed_box_parameters p;
-    p.segments = 16;
-    const BS::CAD_mesh holed = BS::make_two_holed_box(p);
-    test_points_on_mesh_and_visible<SC>("two_holed_box", convert<SC>(holed), SC::Point_3(2., -3., 4.));
-    test_points_on_mesh_and_visible<EPICK>("two_holed_box", convert<EPICK>(holed), EPICK::Point_3(2., -3., 4.));
-  }
-  test_sphere_half_covered<SC>(true);
-  test_sphere_half_covered<SC>(false);
-  test_sphere_half_covered<EPICK>(true);
-  test_sphere_half_covered<EPICK>(false);
-  test_image_orientation<SC>();
-  test_image_orientation<EPICK>();
-  test_noise<SC>();
-  test_noise<EPICK>();
-  test_dropout<SC>();
-  test_dropout<EPICK>();
-  test_multi_view<SC>();
-  test_multi_view<EPICK>();
-  test_default_camera<SC>();
-  test_default_camera<EPICK>();
-  test_bad_cameras<SC>();
-  test_bad_cameras<EPICK>();
-  test_degenerate_faces<SC>();
-  test_degenerate_faces<EPICK>();
-  {
+    BS::Box_cylinder_parameters box_cylinder;
+    box_cylinder.segments = 16;
+    BS::Two_holed_box_parameters holed;
+    holed.segments = 16;
+    const BS::CAD_mesh box_cylinder_mesh = BS::make_box_cylinder(box_cylinder), holed_mesh = BS::make_two_holed_box(holed);
     Temp_dir dir("blended_test_scanning");
-    test_writers<SC>(dir);
-    test_writers<EPICK>(dir);
+    blended_shape_test::for_each_kernel([&](auto kernel, const char*) {
+      run_kernel<decltype(kernel)>(box_cylinder_mesh, holed_mesh, dir);
+    });
     test_partial_files_on_signals(dir);
   }
   test_cad_objects();
   test_bad_cad_parameters();
+#ifdef BLENDED_SCAN_EXE
   {
     Temp_dir dir("blended_test_scanning");
     test_tools(dir);
   }
+#endif
   return blended_shape_test::exit_code();
 }
