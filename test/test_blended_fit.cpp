@@ -30,6 +30,15 @@ typedef CGAL::Exact_predicates_inexact_constructions_kernel K;
 
 namespace {
 
+#ifdef BLENDED_SHAPE_REDUCED_TESTS
+// Sanitizer builds (see the top-level CMakeLists.txt): the runs that repeat
+// the tool's code paths on the same data for other numbers (one superquadric
+// against a moved reference; two evolution runs) are left out.
+constexpr bool reduced = true;
+#else
+constexpr bool reduced = false;
+#endif
+
 const std::string tool = BLENDED_FIT_EXE;
 
 // A strict little JSON reader: validates the whole text and collects the
@@ -407,16 +416,19 @@ void test_parts_run(const Temp_dir& dir)
            "run on data made of parts failed: " << err);
   Json_checker summary(out);
   BS_CHECK(summary.valid(), "the summary is not valid JSON:\n" << out);
-  std::string moved_out;
-  BS_CHECK(run(quote(tool) + " " + quote(dir / "parts.xyz") + " --quiet --no-split --reference " +
-                 quote(dir / "moved_body.off"), dir, nullptr, &moved_out) == 0, "--reference, moved");
-  Json_checker moved(moved_out);
-  BS_CHECK(moved.valid(), "the summary is not valid JSON:\n" << moved_out);
   BS_CHECK(summary.numbers.count("chamfer_distance") == 1 && summary.numbers["chamfer_distance"] > 0. &&
-             summary.numbers["chamfer_distance"] < 0.5 && moved.numbers["chamfer_distance"] > 8. &&
-             moved.numbers["chamfer_distance"] < 12.,
-           "Chamfer distance to the body " << summary.numbers["chamfer_distance"] << ", moved by 10 "
-                                           << moved.numbers["chamfer_distance"]);
+             summary.numbers["chamfer_distance"] < 0.5,
+           "Chamfer distance to the body " << summary.numbers["chamfer_distance"]);
+  if(!reduced)
+  {
+    std::string moved_out;
+    BS_CHECK(run(quote(tool) + " " + quote(dir / "parts.xyz") + " --quiet --no-split --reference " +
+                   quote(dir / "moved_body.off"), dir, nullptr, &moved_out) == 0, "--reference, moved");
+    Json_checker moved(moved_out);
+    BS_CHECK(moved.valid(), "the summary is not valid JSON:\n" << moved_out);
+    BS_CHECK(moved.numbers["chamfer_distance"] > 8. && moved.numbers["chamfer_distance"] < 12.,
+             "Chamfer distance to the body moved by 10: " << moved.numbers["chamfer_distance"]);
+  }
   BS_CHECK(summary.numbers["parts"] == 2 && summary.numbers["genus"] == 0 && count_of(out, "\"accepted\": true") == 1,
            "parts " << summary.numbers["parts"] << ", genus " << summary.numbers["genus"] << ":\n" << out);
   BS_CHECK(err.find("  parts 2  holes 0") != std::string::npos, "the progress of a split model's fit does not count its parts");
@@ -441,6 +453,11 @@ void test_parts_run(const Temp_dir& dir)
   BS_CHECK(evolution.is_object() && evolution.value("runs", 0.) == 1. && evolution.value("run_kept", -1.) == 0. &&
              lengths.size() == 1 && lengths[0].is_number(),
            "the summary does not give the one evolution run and its description length");
+  if(reduced)
+  {
+    blended_shape_test::report("blended_fit_parts");
+    return;
+  }
   // Two runs: two lengths, the shorter kept; the trace holds both runs'
   // events in turn, numbered on, then the final model.
   std::string runs_out;

@@ -7,6 +7,7 @@
 // directory as the path, an empty path, a non-finite vertex, a mesh that
 // cannot be built) must throw and leave no file, and must not touch an
 // existing one. Both supported kernels.
+#include "test_kernels.h"
 #include "test_util.h"
 #include "blended_shape_test_util.h"
 
@@ -333,8 +334,7 @@ struct Tester
 
 int main()
 {
-  Tester<CGAL::Simple_cartesian<double>>{"Simple_cartesian", {}}.run();
-  Tester<CGAL::Exact_predicates_inexact_constructions_kernel>{"Epick", {}}.run();
+  blended_shape_test::for_each_kernel([](auto kernel, const char* name) { Tester<decltype(kernel)>{name, {}}.run(); });
   blended_shape_test::report("test_blended_shape_mesh_io");
   return blended_shape_test::exit_code();
 }
