@@ -30,14 +30,9 @@ typedef CGAL::Exact_predicates_inexact_constructions_kernel K;
 
 namespace {
 
-#ifdef BLENDED_SHAPE_REDUCED_TESTS
-// Sanitizer builds (see the top-level CMakeLists.txt): the runs that repeat
-// the tool's code paths on the same data for other numbers (one superquadric
-// against a moved reference; two evolution runs) are left out.
-constexpr bool reduced = true;
-#else
-constexpr bool reduced = false;
-#endif
+// (sanitizer builds leave out the runs that repeat the tool's code paths on
+// the same data for other numbers: a moved reference, two evolution runs)
+using blended_shape_test::reduced;
 
 const std::string tool = BLENDED_FIT_EXE;
 
@@ -453,13 +448,15 @@ void test_parts_run(const Temp_dir& dir)
   BS_CHECK(evolution.is_object() && evolution.value("runs", 0.) == 1. && evolution.value("run_kept", -1.) == 0. &&
              lengths.size() == 1 && lengths[0].is_number(),
            "the summary does not give the one evolution run and its description length");
-  if(reduced)
-  {
-    blended_shape_test::report("blended_fit_parts");
-    return;
-  }
-  // Two runs: two lengths, the shorter kept; the trace holds both runs'
-  // events in turn, numbered on, then the final model.
+  blended_shape_test::report("blended_fit_parts");
+}
+
+// Two evolution runs on the data of test_parts_run(): two lengths, the
+// shorter kept; the trace holds both runs' events in turn, numbered on, then
+// the final model.
+void test_two_runs(const Temp_dir& dir)
+{
+  const nlohmann::json none = nlohmann::json::array();
   std::string runs_out;
   BS_CHECK(run(quote(tool) + " " + quote(dir / "parts.xyz") + " --quiet --max-parts 2 --runs 2 --trace " +
                  quote(dir / "runs_trace"), dir, nullptr, &runs_out) == 0, "--runs 2");
@@ -484,7 +481,7 @@ void test_parts_run(const Temp_dir& dir)
   BS_CHECK(traced >= kept_events.size() && exists(dir / final_trace.str()),
            "--runs 2 --trace: " << traced << " events traced, " << kept_events.size() << " in the summary, no "
                                 << final_trace.str());
-  blended_shape_test::report("blended_fit_parts");
+  blended_shape_test::report("blended_fit_two_runs");
 }
 
 // 200 strays over 10 times the box of 800 points: by default they are found
@@ -611,6 +608,8 @@ int main()
   test_failed_writes(dir);
   test_good_run(dir);
   test_parts_run(dir);
+  if(!reduced) // (sanitizer builds: the same code paths as test_parts_run())
+    test_two_runs(dir);
   test_strays(dir);
   test_any_scale(dir);
   test_flat_points(dir);

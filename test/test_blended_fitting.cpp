@@ -32,11 +32,7 @@ namespace BS = CGAL::Blended_shapes;
 
 namespace {
 
-#ifdef BLENDED_SHAPE_REDUCED_TESTS
-constexpr bool reduced = true; // sanitizer builds: same code paths, fewer points
-#else
-constexpr bool reduced = false;
-#endif
+using blended_shape_test::reduced;
 
 typedef BS::Ellipse_blending_region Region;
 using blended_shape_test::set_parameter;

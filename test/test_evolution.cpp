@@ -58,11 +58,7 @@ namespace BS = CGAL::Blended_shapes;
 
 namespace {
 
-#ifdef BLENDED_SHAPE_REDUCED_TESTS
-constexpr bool reduced = true; // sanitizer builds: the same checks on fewer points
-#else
-constexpr bool reduced = false;
-#endif
+using blended_shape_test::reduced;
 
 const int resolution = 16;
 

@@ -36,11 +36,7 @@ namespace BS = CGAL::Blended_shapes;
 
 namespace {
 
-#ifdef BLENDED_SHAPE_REDUCED_TESTS
-constexpr bool reduced = true; // sanitizer builds: same code paths, fewer cases and points
-#else
-constexpr bool reduced = false;
-#endif
+using blended_shape_test::reduced;
 // The number of points of a synthetic cloud: smaller in sanitizer builds.
 std::size_t cloud_size(std::size_t n) { return reduced ? (std::max<std::size_t>)(n / 3, 500) : n; }
 

@@ -9,6 +9,13 @@
 #include <string>
 
 namespace blended_shape_test {
+// Sanitizer builds (BLENDED_SHAPE_REDUCED_TESTS, see the top-level
+// CMakeLists.txt): the same code paths on fewer cases and points.
+#ifdef BLENDED_SHAPE_REDUCED_TESTS
+constexpr bool reduced = true;
+#else
+constexpr bool reduced = false;
+#endif
 inline int& failures() { static int n = 0; return n; }
 inline void report(const std::string& name)
 {
