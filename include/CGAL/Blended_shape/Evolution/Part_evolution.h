@@ -698,7 +698,7 @@ private:
     std::unique_ptr<Fitter> before;
     const bool gradual = proposal.segment != Split_proposal::none;
     std::vector<Chart_point> base_foot_points; // of a gradual part's base: where its fits start
-    Stage_plan plan{1, 0};                       // of a gradual part's stages
+    std::optional<Stage_plan> plan;              // of a gradual part's stages
     if(gradual) // (its fits start with the base's)
       internal::notify_phase(visitor, Evolution_phase::Split_fit, m_fitter->model().shape().number_of_components() + 1);
     try
@@ -711,7 +711,7 @@ private:
       if(gradual)
       {
         plan = stage_plan(*split);
-        next = stage_fitter(*split, 1, plan, m_fitter->settings());
+        next = stage_fitter(*split, 1, *plan, m_fitter->settings());
         next->start_from_chart_points(base_foot_points);
       }
       else
@@ -730,7 +730,7 @@ private:
       internal::notify_phase(visitor, Evolution_phase::Split_fit, m_fitter->model().shape().number_of_components());
     }
     const Fitting_status status =
-      gradual ? blend_in_stages(plan, before->settings(), visitor, callback) : fit_to_rest_heard(visitor, callback);
+      gradual ? blend_in_stages(*plan, before->settings(), visitor, callback) : fit_to_rest_heard(visitor, callback);
     const double msd_after = mean_squared_distance();
     e.description_length_after = description_length_of(msd_after, model());
     e.rms_after = std::sqrt(msd_after);
