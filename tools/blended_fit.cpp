@@ -31,65 +31,72 @@ typedef BS::internal::Json Json;
 
 namespace {
 
-const char* usage =
-  "Usage: blended_fit INPUT [options]\n"
-  "Fit a blended-shape model to the point cloud INPUT (.xyz .pts .pwn .txt .ply .off .obj .stl)\n"
-  "and print a JSON summary on stdout: one superquadric first, then parts blended in where\n"
-  "the data has pieces between concave creases, each kept only if it pays for its parameters\n"
-  "(the JSON's 'evolution' lists every split tried).\n"
-  "\n"
-  "Options:\n"
-  "  --json FILE          write the JSON summary to FILE instead of stdout\n"
-  "  --mesh FILE          write the model's component pieces (sec. 3.3 of the paper) as\n"
-  "                       FILE.ply (binary, faces coloured by component) or FILE.off\n"
-  "  --hierarchy FILE     write the blending hierarchy as Graphviz DOT\n"
-  "  --model FILE         write the model as JSON: its pose and its blended shape (a model\n"
-  "                       file as read_blended_shape() reads, in the model's own frame)\n"
-  "  --no-split           one superquadric: no part evolution\n"
-  "  --max-parts N        at most N parts (default 8; 1 is --no-split)\n"
-  "  --splits SOURCE      where splits come from: creases (default: a part fitted to each\n"
-  "                       piece of the data between concave creases, blended in gradually),\n"
-  "                       forces (the force analysis at rest, sec. 5.4 of the paper), both,\n"
-  "                       or branches (the limbs of the data joined one at a time from its\n"
-  "                       centre, each offered as a part)\n"
-  "  --evolution-points N decide the splits on at most N of the points (default 4000; 0:\n"
-  "                       all), then fit the final model to all of them\n"
-  "  --blend-stages N     a crease split's part comes in over N stages (default 4; 1: at once)\n"
-  "  --stage-iterations N iteration limit of each of those stages but the last (default 30)\n"
-  "  --first-split-stages N, --first-split-stage-iterations N\n"
-  "                       the same for the first split (a part on a one-part base;\n"
-  "                       defaults 2 and 1)\n"
-  "  --runs N             evolve N times, run r on the points scaled by 1 + r 2^-23 about their\n"
-  "                       centre (other rounding, other paths; default 1), and keep the run\n"
-  "                       whose model describes the points in the fewest nats (see the manual,\n"
-  "                       Inputs changed by 1e-7); the runs go on concurrently on the --threads\n"
-  "                       (on one core the time grows with N)\n"
-  "  --area-weight W      weight of the model's surface area in every fit (default 0: none;\n"
-  "                       0.3 keeps the surface from growing where no point is, see the\n"
-  "                       manual, Compact Models)\n"
-  "  --trace DIR          write, as the fit goes, the model after each split tried (kept or\n"
-  "                       undone), each part removed and a revert, then the first fit and the\n"
-  "                       final model, to DIR (created if missing): NN_KIND.ply (pieces\n"
-  "                       coloured by component) and NN_KIND.dot (hierarchy), KIND first_fit,\n"
-  "                       split, undo, remove, revert or final (with --runs, every run's in turn)\n"
-  "  --no-holes           do not add holes (this release never does)\n"
-  "  --max-iterations N   iteration limit of each fit to rest (default 100)\n"
-  "  --seed N             random seed for the point subsets (default 0)\n"
-  "  --strays FILE        write the indices (from 0, in input order) of the points the model\n"
-  "                       leaves out (stray or isolated), one a line\n"
-  "  --reference MESH     a mesh of the scanned object (.off .obj .ply .stl): the JSON then\n"
-  "                       gives the model's symmetric Chamfer distance to it (in the\n"
-  "                       points' unit)\n"
-  "  --robust             a one-part result down-weights stray points (the default: a Gaussian\n"
-  "                       and uniform mixture, see the manual); evolution fits the points that\n"
-  "                       are not isolated by least squares\n"
-  "  --no-robust          the paper's plain least squares: every point pulls alike\n"
-  "  --explicit           use the paper's explicit integrator instead of Gauss-Newton\n"
-  "  --threads N          threads of the fit (default 0: all cores); the result does not depend on it\n"
-  "  --quiet              no progress on stderr\n"
-  "  --help               this text\n"
-  "Exit code 0 on success, 1 on a failure (unreadable input, ...), 2 on a command-line mistake.\n"
-  "No output file is written unless the fit succeeds (the --trace files are written as it goes).\n";
+// The usage text, its defaults those of the settings the tool starts from.
+std::string usage()
+{
+  const BS::Evolution_settings evolution;
+  const BS::Fitting_settings fitting;
+  const auto n = [](std::size_t value) { return std::to_string(value); };
+  return std::string(
+    "Usage: blended_fit INPUT [options]\n"
+    "Fit a blended-shape model to the point cloud INPUT (.xyz .pts .pwn .txt .ply .off .obj .stl)\n"
+    "and print a JSON summary on stdout: one superquadric first, then parts blended in where\n"
+    "the data has pieces between concave creases, each kept only if it pays for its parameters\n"
+    "(the JSON's 'evolution' lists every split tried).\n"
+    "\n"
+    "Options:\n"
+    "  --json FILE          write the JSON summary to FILE instead of stdout\n"
+    "  --mesh FILE          write the model's component pieces (sec. 3.3 of the paper) as\n"
+    "                       FILE.ply (binary, faces coloured by component) or FILE.off\n"
+    "  --hierarchy FILE     write the blending hierarchy as Graphviz DOT\n"
+    "  --model FILE         write the model as JSON: its pose and its blended shape (a model\n"
+    "                       file as read_blended_shape() reads, in the model's own frame)\n"
+    "  --no-split           one superquadric: no part evolution\n"
+    "  --max-parts N        at most N parts (default " + n(evolution.maximum_number_of_parts) + "; 1 is --no-split)\n"
+    "  --splits SOURCE      where splits come from: creases (default: a part fitted to each\n"
+    "                       piece of the data between concave creases, blended in gradually),\n"
+    "                       forces (the force analysis at rest, sec. 5.4 of the paper), both,\n"
+    "                       or branches (the limbs of the data joined one at a time from its\n"
+    "                       centre, each offered as a part)\n"
+    "  --evolution-points N decide the splits on at most N of the points (default " + n(evolution.maximum_evolution_points) + "; 0:\n"
+    "                       all), then fit the final model to all of them\n"
+    "  --blend-stages N     a crease split's part comes in over N stages (default " + n(evolution.blend_stages) + "; 1: at once)\n"
+    "  --stage-iterations N iteration limit of each of those stages but the last (default " + n(evolution.intermediate_stage_iterations) + ")\n"
+    "  --first-split-stages N, --first-split-stage-iterations N\n"
+    "                       the same for the first split (a part on a one-part base;\n"
+    "                       defaults " + n(evolution.first_split_blend_stages) + " and " + n(evolution.first_split_stage_iterations) + ")\n"
+    "  --runs N             evolve N times, run r on the points scaled by 1 + r 2^-23 about their\n"
+    "                       centre (other rounding, other paths; default " + n(evolution.evolution_runs) + "), and keep the run\n"
+    "                       whose model describes the points in the fewest nats (see the manual,\n"
+    "                       Inputs changed by 1e-7); the runs go on concurrently on the --threads\n"
+    "                       (on one core the time grows with N)\n"
+    "  --area-weight W      weight of the model's surface area in every fit (default 0: none;\n"
+    "                       0.3 keeps the surface from growing where no point is, see the\n"
+    "                       manual, Compact Models)\n"
+    "  --trace DIR          write, as the fit goes, the model after each split tried (kept or\n"
+    "                       undone), each part removed and a revert, then the first fit and the\n"
+    "                       final model, to DIR (created if missing): NN_KIND.ply (pieces\n"
+    "                       coloured by component) and NN_KIND.dot (hierarchy), KIND first_fit,\n"
+    "                       split, undo, remove, revert or final (with --runs, every run's in turn)\n"
+    "  --no-holes           do not add holes (this release never does)\n"
+    "  --max-iterations N   iteration limit of each fit to rest (default " + n(fitting.maximum_iterations) + ")\n"
+    "  --seed N             random seed for the point subsets (default " + n(fitting.random_seed) + ")\n"
+    "  --strays FILE        write the indices (from 0, in input order) of the points the model\n"
+    "                       leaves out (stray or isolated), one a line\n"
+    "  --reference MESH     a mesh of the scanned object (.off .obj .ply .stl): the JSON then\n"
+    "                       gives the model's symmetric Chamfer distance to it (in the\n"
+    "                       points' unit)\n"
+    "  --robust             a one-part result down-weights stray points (the default: a Gaussian\n"
+    "                       and uniform mixture, see the manual); evolution fits the points that\n"
+    "                       are not isolated by least squares\n"
+    "  --no-robust          the paper's plain least squares: every point pulls alike\n"
+    "  --explicit           use the paper's explicit integrator instead of Gauss-Newton\n"
+    "  --threads N          threads of the fit (default 0: all cores); the result does not depend on it\n"
+    "  --quiet              no progress on stderr\n"
+    "  --help               this text\n"
+    "Exit code 0 on success, 1 on a failure (unreadable input, ...), 2 on a command-line mistake.\n"
+    "No output file is written unless the fit succeeds (the --trace files are written as it goes).\n");
+}
 
 // JSON numbers must be finite, and a model's always are: anything else is a bug.
 Json number(double x)
@@ -288,17 +295,17 @@ int main(int argc, char** argv)
                                               "--stage-iterations", "--first-split-stages",
                                               "--first-split-stage-iterations", "--runs"},
                                              {"--no-split", "--no-holes", "--quiet", "--robust", "--no-robust", "--explicit"});
-  return tools::run_tool("blended_fit", usage, argc, argv, options, [](const tools::Command_line& line) {
+  return tools::run_tool("blended_fit", usage(), argc, argv, options, [](const tools::Command_line& line) {
     std::string input, json, mesh, hierarchy, model_file, strays, trace, reference_file;
     bool no_split = false, quiet = false, robust = true, explicit_integrator = false, max_parts_given = false;
-    std::size_t iterations = 100, threads = 0, max_parts = BS::Evolution_settings().maximum_number_of_parts;
+    std::size_t iterations = BS::Fitting_settings().maximum_iterations, threads = 0, max_parts = BS::Evolution_settings().maximum_number_of_parts;
     std::size_t evolution_points = BS::Evolution_settings().maximum_evolution_points;
     std::size_t blend_stages = BS::Evolution_settings().blend_stages;
     std::size_t stage_iterations = BS::Evolution_settings().intermediate_stage_iterations;
     std::size_t first_split_stages = BS::Evolution_settings().first_split_blend_stages;
     std::size_t first_split_stage_iterations = BS::Evolution_settings().first_split_stage_iterations;
     std::size_t runs = BS::Evolution_settings().evolution_runs;
-    unsigned int seed = 0;
+    unsigned int seed = BS::Fitting_settings().random_seed;
     double area_weight = BS::Fitting_settings().area_weight;
     BS::Split_source split_source = BS::Evolution_settings().split_source;
     for(const tools::Option& o : line.options)
