@@ -11,8 +11,9 @@
 #include "test_util.h"
 #include "blended_shape_test_util.h"
 
-// The umbrella header: it compiles on its own and brings everything used here.
-#include <CGAL/Blended_shape.h>
+#include <CGAL/Blended_shape/Blending/Ellipse_blending_region.h>
+#include <CGAL/Blended_shape/IO/Blended_shape_mesh_io.h>
+#include <CGAL/Blended_shape/Primitives/Superquadric_ellipsoid.h>
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Simple_cartesian.h>
