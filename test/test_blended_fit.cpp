@@ -389,6 +389,22 @@ void test_good_run(const Temp_dir& dir)
 // Data made of parts (a body with a part, testing::body_with_part_scan()):
 // the tool returns two parts, says so in its summary and its progress
 // (the iterations of a split model's fit count its parts), and traces the split.
+// The "evolution" object of a summary, empty if the summary is not valid
+// JSON or has none (the caller's Json_checker reports that), and its array
+// `key`, empty if it has none: no exception on a broken summary.
+nlohmann::json evolution_of(const std::string& summary)
+{
+  const nlohmann::json parsed = nlohmann::json::parse(summary, nullptr, false);
+  const nlohmann::json evolution = parsed.is_object() ? parsed.value("evolution", nlohmann::json::object()) : nlohmann::json();
+  return evolution.is_object() ? evolution : nlohmann::json::object();
+}
+
+nlohmann::json array_of(const nlohmann::json& evolution, const char* key)
+{
+  const nlohmann::json a = evolution.value(key, nlohmann::json::array());
+  return a.is_array() ? a : nlohmann::json::array();
+}
+
 void test_parts_run(const Temp_dir& dir)
 {
   write_points(dir / "parts.xyz", BS::testing::body_with_part_scan<K>(1500, 1));
@@ -429,11 +445,8 @@ void test_parts_run(const Temp_dir& dir)
   BS_CHECK(err.find("  parts 2  holes 0") != std::string::npos, "the progress of a split model's fit does not count its parts");
   BS_CHECK(err.find("split of component 0 kept") != std::string::npos, "the progress does not name the kept split");
   // The trace's files are numbered by event (from 1), in the order of the summary's events.
-  // (an invalid summary, already reported above, gives no events rather than an exception)
-  const nlohmann::json parsed = nlohmann::json::parse(out, nullptr, false);
-  const nlohmann::json none = nlohmann::json::array();
-  const nlohmann::json evolution = parsed.is_object() ? parsed.value("evolution", nlohmann::json::object()) : nlohmann::json::object();
-  const nlohmann::json events = evolution.is_object() ? evolution.value("events", none) : none;
+  const nlohmann::json evolution = evolution_of(out);
+  const nlohmann::json events = array_of(evolution, "events");
   std::size_t kept = 0;
   for(std::size_t i = 0; i < events.size(); ++i)
     if(events[i].is_object() && events[i].value("accepted", false))
@@ -441,11 +454,11 @@ void test_parts_run(const Temp_dir& dir)
   std::ostringstream kept_trace;
   kept_trace << "parts_trace/" << std::setw(2) << std::setfill('0') << kept << "_split.ply";
   BS_CHECK(kept > 0 && exists(dir / kept_trace.str()), "no trace of the kept split (" << kept_trace.str() << ")");
-  BS_CHECK(evolution.is_object() && evolution.value("split_source", std::string()) == "creases",
+  BS_CHECK(evolution.value("split_source", std::string()) == "creases",
            "the summary does not name the split source (creases by default)");
   // one evolution run by default: its description length, run 0 kept
-  const nlohmann::json lengths = evolution.is_object() ? evolution.value("run_description_lengths", none) : none;
-  BS_CHECK(evolution.is_object() && evolution.value("runs", 0.) == 1. && evolution.value("run_kept", -1.) == 0. &&
+  const nlohmann::json lengths = array_of(evolution, "run_description_lengths");
+  BS_CHECK(evolution.value("runs", 0.) == 1. && evolution.value("run_kept", -1.) == 0. &&
              lengths.size() == 1 && lengths[0].is_number(),
            "the summary does not give the one evolution run and its description length");
   blended_shape_test::report("blended_fit_parts");
@@ -456,14 +469,11 @@ void test_parts_run(const Temp_dir& dir)
 // the final model.
 void test_two_runs(const Temp_dir& dir)
 {
-  const nlohmann::json none = nlohmann::json::array();
   std::string runs_out;
   BS_CHECK(run(quote(tool) + " " + quote(dir / "parts.xyz") + " --quiet --max-parts 2 --runs 2 --trace " +
                  quote(dir / "runs_trace"), dir, nullptr, &runs_out) == 0, "--runs 2");
-  const nlohmann::json runs_parsed = nlohmann::json::parse(runs_out, nullptr, false);
-  const nlohmann::json runs_evolution =
-    runs_parsed.is_object() ? runs_parsed.value("evolution", nlohmann::json::object()) : nlohmann::json::object();
-  const nlohmann::json two = runs_evolution.is_object() ? runs_evolution.value("run_description_lengths", none) : none;
+  const nlohmann::json runs_evolution = evolution_of(runs_out);
+  const nlohmann::json two = array_of(runs_evolution, "run_description_lengths");
   const bool two_lengths = two.size() == 2 && two[0].is_number() && two[1].is_number();
   BS_CHECK(two_lengths && runs_evolution.value("runs", 0.) == 2. &&
              runs_evolution.value("run_kept", -1.) == (two[1].get<double>() < two[0].get<double>() ? 1. : 0.),
@@ -477,7 +487,7 @@ void test_two_runs(const Temp_dir& dir)
   }
   std::ostringstream final_trace;
   final_trace << "runs_trace/" << std::setw(2) << std::setfill('0') << traced + 1 << "_final.ply";
-  const nlohmann::json kept_events = runs_evolution.is_object() ? runs_evolution.value("events", none) : none;
+  const nlohmann::json kept_events = array_of(runs_evolution, "events");
   BS_CHECK(traced >= kept_events.size() && exists(dir / final_trace.str()),
            "--runs 2 --trace: " << traced << " events traced, " << kept_events.size() << " in the summary, no "
                                 << final_trace.str());
