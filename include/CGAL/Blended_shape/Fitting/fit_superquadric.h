@@ -163,6 +163,73 @@ struct Fit_result
   std::vector<Chart_mesh<GeomTraits>> meshes;   ///< the model's chart meshes, positioned
 };
 
+namespace internal {
+
+// The body of fit_superquadric() once its named parameters are read and its
+// points normalized (`normalized`, by `normalization`; `start`: when the fit
+// began). It depends on the kernel and the visitor only, so that a program
+// calling fit_superquadric() with many combinations of named parameters (as
+// fit_blended_shape() does) compiles the fit once, not once per combination.
+template <class GeomTraits, class Visitor>
+Fit_result<GeomTraits> fit_normalized_superquadric(const Point_normalization<GeomTraits>& normalization,
+                                                   const std::vector<typename GeomTraits::Point_3>& normalized,
+                                                   const Fitting_settings& s, bool all_axes, bool mend,
+                                                   Visitor& visitor, const std::function<bool(double)>& callback,
+                                                   const CGAL::Surface_mesh<typename GeomTraits::Point_3>* reference,
+                                                   std::chrono::steady_clock::time_point start)
+{
+  typedef GeomTraits Geom_traits;
+  typedef typename Geom_traits::Point_3 Point_3;
+  typedef CGAL::Identity_property_map<Point_3> Normalized_point_map;
+  // Strays ruin the moments (sec. 5.3's initialization) when many are far away.
+  const auto initial = s.robust_weighting == Robust_weighting::None ? initialize_from_moments(normalized)
+                                                                    : initialize_from_trimmed_moments(normalized);
+  typedef Superquadric_multistart_search<Geom_traits, std::vector<Point_3>, Normalized_point_map> Search;
+  typedef typename Search::Model Model;
+  typedef typename Search::Fitter Fitter;
+  // The multi-start search and the fit of `pts` from `init` up to `last_phase`;
+  // after a fit to rest on all points, the search among similar basins too.
+  auto searched_fit = [&](const std::vector<Point_3>& pts, const Fitting_settings& settings,
+                          const Ellipsoid_fit<Geom_traits>& init, Fitting_phase last_phase, Fitting_status& status) {
+    Search search(pts, Normalized_point_map(), settings);
+    const Model start_model = all_axes ? search.best_start(init, visitor, callback) : make_initial_model(init, 2);
+    std::unique_ptr<Fitter> fitter = std::make_unique<Fitter>(pts, start_model, settings);
+    status = search.last_candidate_status();
+    if(!search.aborted())
+      status = fitter->run(visitor, callback, last_phase);
+    if(all_axes && last_phase == Fitting_phase::All_points)
+      fitter = search.search_similar_basins(std::move(fitter), status, visitor, callback);
+    status.iterations += search.candidate_iterations();
+    status.iterations_on_all_points += search.candidate_iterations_on_all_points();
+    return fitter;
+  };
+  Fitting_status final_status;
+  std::unique_ptr<Fitter> fitter = searched_fit(normalized, s, initial, Fitting_phase::All_points, final_status);
+  if(all_axes && s.robust_weighting != Robust_weighting::None && mend && !final_status.aborted &&
+     !final_status.timed_out)
+  {
+    // (on the subset only: a start for the robust fit, see mend_missed_surface())
+    auto least_squares_start = [&](const std::vector<Point_3>& pts, Fitting_status& status) {
+      Fitting_settings least_squares = s;
+      least_squares.robust_weighting = Robust_weighting::None;
+      return searched_fit(pts, least_squares, initialize_from_moments(pts), Fitting_phase::Subset, status);
+    };
+    fitter = internal::mend_missed_surface(std::move(fitter), final_status, least_squares_start, normalized, visitor,
+                                           callback);
+  }
+  final_status.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+
+  std::vector<std::size_t> stray_points;
+  Fit_metrics metrics = compute_fit_metrics(*fitter, initial, final_status, &stray_points);
+  if(reference != nullptr)
+    metrics.chamfer_distance = symmetric_chamfer_distance(fitter->chart_meshes(), normalization.to_normalized_mesh(*reference));
+  const Model model = normalization.model_from_normalized(fitter->model());
+  return Fit_result<Geom_traits>{model, normalization.from_normalized(initial), normalization.from_normalized(metrics),
+                                 std::move(stray_points), normalization.positioned_meshes(fitter->chart_meshes(), model)};
+}
+
+} // namespace internal
+
 /*!
 \ingroup PkgBlendedShapeFitting
 
@@ -238,56 +305,9 @@ auto fit_superquadric(const PointRange& points, const NamedParameters& np = CGAL
   const auto start = std::chrono::steady_clock::now();
 
   // The fit sees the points centred at unit size (checked first), the result is taken back.
-  typedef typename Geom_traits::Point_3 Point_3;
-  typedef CGAL::Identity_property_map<Point_3> Normalized_point_map;
   const internal::Point_normalization<Geom_traits> normalization(points, point_map);
-  const std::vector<Point_3> normalized = normalization.normalized_points(points, point_map);
-  // Strays ruin the moments (sec. 5.3's initialization) when many are far away.
-  const auto initial = s.robust_weighting == Robust_weighting::None ? initialize_from_moments(normalized)
-                                                                    : initialize_from_trimmed_moments(normalized);
-  typedef Superquadric_multistart_search<Geom_traits, std::vector<Point_3>, Normalized_point_map> Search;
-  typedef typename Search::Model Model;
-  typedef typename Search::Fitter Fitter;
-  // The multi-start search and the fit of `pts` from `init` up to `last_phase`;
-  // after a fit to rest on all points, the search among similar basins too.
-  auto searched_fit = [&](const std::vector<Point_3>& pts, const Fitting_settings& settings,
-                          const Ellipsoid_fit<Geom_traits>& init, Fitting_phase last_phase, Fitting_status& status) {
-    Search search(pts, Normalized_point_map(), settings);
-    const Model start_model = all_axes ? search.best_start(init, visitor, callback) : make_initial_model(init, 2);
-    std::unique_ptr<Fitter> fitter = std::make_unique<Fitter>(pts, start_model, settings);
-    status = search.last_candidate_status();
-    if(!search.aborted())
-      status = fitter->run(visitor, callback, last_phase);
-    if(all_axes && last_phase == Fitting_phase::All_points)
-      fitter = search.search_similar_basins(std::move(fitter), status, visitor, callback);
-    status.iterations += search.candidate_iterations();
-    status.iterations_on_all_points += search.candidate_iterations_on_all_points();
-    return fitter;
-  };
-  Fitting_status final_status;
-  std::unique_ptr<Fitter> fitter = searched_fit(normalized, s, initial, Fitting_phase::All_points, final_status);
-  if(all_axes && s.robust_weighting != Robust_weighting::None && mend && !final_status.aborted &&
-     !final_status.timed_out)
-  {
-    // (on the subset only: a start for the robust fit, see mend_missed_surface())
-    auto least_squares_start = [&](const std::vector<Point_3>& pts, Fitting_status& status) {
-      Fitting_settings least_squares = s;
-      least_squares.robust_weighting = Robust_weighting::None;
-      return searched_fit(pts, least_squares, initialize_from_moments(pts), Fitting_phase::Subset, status);
-    };
-    fitter = internal::mend_missed_surface(std::move(fitter), final_status, least_squares_start, normalized, visitor,
-                                           callback);
-  }
-  final_status.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-
-  std::vector<std::size_t> stray_points;
-  Fit_metrics metrics = compute_fit_metrics(*fitter, initial, final_status, &stray_points);
-  if(reference != nullptr)
-    metrics.chamfer_distance = symmetric_chamfer_distance(fitter->chart_meshes(), normalization.to_normalized_mesh(*reference));
-  const Model model = normalization.model_from_normalized(fitter->model());
-  Fit_result<Geom_traits> result{model, normalization.from_normalized(initial), normalization.from_normalized(metrics),
-                                 std::move(stray_points), normalization.positioned_meshes(fitter->chart_meshes(), model)};
-  return result;
+  return internal::fit_normalized_superquadric(normalization, normalization.normalized_points(points, point_map), s,
+                                               all_axes, mend, visitor, callback, reference, start);
 }
 
 } // namespace Blended_shapes
