@@ -52,6 +52,7 @@
 #include <sstream>
 #include <stdexcept>
 #include <string>
+#include <type_traits>
 #include <vector>
 
 namespace BS = CGAL::Blended_shapes;
@@ -1925,20 +1926,28 @@ void test_branch_evolution()
   }
 }
 
+// Part evolution's steps and limits (`parts`), or its whole runs on scans
+// (`fits_epick`, `fits_cartesian`: not in sanitizer builds, whose checks they
+// do not add to: they are about geometry, and slow there). Apart, so that
+// CTest runs them side by side: together they were the longest test, alone
+// at the end of the Release tests (the whole runs about 85 % of it).
 template <class K>
-void run_part_evolution(const char* kernel)
+void run_part_evolution(const char* kernel, bool whole_runs)
 {
   const int before = blended_shape_test::failures();
-  test_shrink_to_fit<K>();
-  test_add_gradual_part<K>();
-  test_lengthened_into_base<K>();
-  test_pole_towards<K>();
-  test_region_inside_part<K>();
-  test_proposals_hold_data<K>();
-  test_no_over_splitting<K>();
-  test_remove_unpaid_parts<K>();
-  test_evolution_limits<K>();
-  if(!reduced) // (cases the sanitizers do not add to: they are about geometry, and slow there)
+  if(!whole_runs)
+  {
+    test_shrink_to_fit<K>();
+    test_add_gradual_part<K>();
+    test_lengthened_into_base<K>();
+    test_pole_towards<K>();
+    test_region_inside_part<K>();
+    test_proposals_hold_data<K>();
+    test_no_over_splitting<K>();
+    test_remove_unpaid_parts<K>();
+    test_evolution_limits<K>();
+  }
+  else
   {
     test_split_model_fits_to_rest<K>();
     test_fit_blended_shape<K>();
@@ -1948,8 +1957,8 @@ void run_part_evolution(const char* kernel)
     test_crease_evolution<K>();
     test_branch_evolution<K>();
   }
-  std::cout << "part evolution with " << kernel << (blended_shape_test::failures() == before ? ": SUCCESS" : ": FAILED")
-            << std::endl;
+  std::cout << (whole_runs ? "whole evolution runs with " : "part evolution with ") << kernel
+            << (blended_shape_test::failures() == before ? ": SUCCESS" : ": FAILED") << std::endl;
 }
 
 template <class K>
@@ -2005,10 +2014,18 @@ void test_evolution_settings_from_named_parameters()
 
 int main(int argc, char** argv)
 {
+  // (`fits_epick`, `fits_cartesian`: the whole runs with one kernel each, as
+  // two tests that CTest runs side by side; `all` runs every part)
   const std::string part = argc > 1 ? argv[1] : "all";
-  if(argc > 2 || (part != "all" && part != "regions" && part != "parts" && part != "segments"))
+  const bool fits = part == "fits_epick" || part == "fits_cartesian";
+  if(argc > 2 || (part != "all" && part != "regions" && part != "parts" && !fits && part != "segments"))
   {
-    std::cerr << "usage: test_evolution [all|regions|parts|segments]" << std::endl;
+    std::cerr << "usage: test_evolution [all|regions|parts|fits_epick|fits_cartesian|segments]" << std::endl;
+    return EXIT_FAILURE;
+  }
+  if(reduced && fits)
+  {
+    std::cerr << "test_evolution " << part << ": not in sanitizer builds (see run_part_evolution())" << std::endl;
     return EXIT_FAILURE;
   }
   if(part == "all" || part == "regions")
@@ -2023,7 +2040,17 @@ int main(int argc, char** argv)
   }
   if(part == "all" || part == "parts")
   {
-    blended_shape_test::for_each_kernel([](auto kernel, const char* name) { run_part_evolution<decltype(kernel)>(name); });
+    blended_shape_test::for_each_kernel(
+      [](auto kernel, const char* name) { run_part_evolution<decltype(kernel)>(name, false); });
+  }
+  if((part == "all" && !reduced) || fits)
+  {
+    blended_shape_test::for_each_kernel([&](auto kernel, const char* name) {
+      typedef decltype(kernel) K;
+      const bool epick = std::is_same<K, CGAL::Exact_predicates_inexact_constructions_kernel>::value;
+      if(part == "all" || epick == (part == "fits_epick"))
+        run_part_evolution<K>(name, true);
+    });
   }
   blended_shape_test::report("test_evolution " + part);
   return blended_shape_test::exit_code();
