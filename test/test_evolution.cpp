@@ -1926,6 +1926,29 @@ void test_branch_evolution()
   }
 }
 
+// fit_blended_shape()'s whole path on a small scan, also in sanitizer builds
+// (which leave out the whole runs on scans below and the tools): a body with
+// a part, evolved on all its points and on a sample (then fitted on all),
+// with two runs on two threads and on one, and stopped by the callback
+// (check_evolution_runs()).
+template <class K>
+void test_small_evolution()
+{
+  const auto points = BS::testing::body_with_part_scan<K>(600, 2);
+  const auto one = BS::fit_blended_shape(points);
+  check_evolution_runs(points, one);
+  const auto sampled = BS::fit_blended_shape(points, BS::parameters::maximum_evolution_points(std::size_t(300)));
+  // (the figures of the final fit of several parts are of the points not
+  // isolated; those of one superquadric, of all the points)
+  const std::size_t fitted = points.size() - sampled.stray_points.size();
+  BS_CHECK(sampled.model.parameters().allFinite() && std::isfinite(sampled.metrics.rms) && !sampled.status.aborted &&
+             sampled.metrics.number_of_points == (sampled.number_of_parts() > 1 ? fitted : points.size()),
+           "evolution on 300 of 600 points: figures of " << sampled.metrics.number_of_points << " points ("
+                                                         << fitted << " not isolated), RMS " << sampled.metrics.rms);
+  std::cout << "  small scan: " << one.number_of_parts() << " parts; on a sample of 300, " << sampled.number_of_parts()
+            << std::endl;
+}
+
 // Part evolution's steps and limits (`parts`), or its whole runs on scans
 // (`fits_epick`, `fits_cartesian`: not in sanitizer builds, whose checks they
 // do not add to: they are about geometry, and slow there). Apart, so that
@@ -1946,6 +1969,7 @@ void run_part_evolution(const char* kernel, bool whole_runs)
     test_no_over_splitting<K>();
     test_remove_unpaid_parts<K>();
     test_evolution_limits<K>();
+    test_small_evolution<K>();
   }
   else
   {
