@@ -915,7 +915,7 @@ void test_bad_cad_parameters()
 // ---------------------------------------------------------------- command-line tools
 
 
-#ifdef BLENDED_SCAN_EXE // (not in sanitizer builds: see test/CMakeLists.txt)
+#ifdef BLENDED_SCAN_EXE // (where the tools are built: not in sanitizer builds by default, see test/CMakeLists.txt)
 void test_tools(const Temp_dir& dir)
 {
   const int before = failures();
