@@ -1949,39 +1949,42 @@ void test_small_evolution()
             << std::endl;
 }
 
-// Part evolution's steps and limits (`parts`), or its whole runs on scans
-// (`fits_epick`, `fits_cartesian`: not in sanitizer builds, whose checks they
-// do not add to: they are about geometry, and slow there). Apart, so that
-// CTest runs them side by side: together they were the longest test, alone
-// at the end of the Release tests (the whole runs about 85 % of it).
+// Part evolution's steps and limits (`parts`).
 template <class K>
-void run_part_evolution(const char* kernel, bool whole_runs)
+void run_part_evolution(const char* kernel)
 {
   const int before = blended_shape_test::failures();
-  if(!whole_runs)
-  {
-    test_shrink_to_fit<K>();
-    test_add_gradual_part<K>();
-    test_lengthened_into_base<K>();
-    test_pole_towards<K>();
-    test_region_inside_part<K>();
-    test_proposals_hold_data<K>();
-    test_no_over_splitting<K>();
-    test_remove_unpaid_parts<K>();
-    test_evolution_limits<K>();
-    test_small_evolution<K>();
-  }
-  else
-  {
-    test_split_model_fits_to_rest<K>();
-    test_fit_blended_shape<K>();
-    test_structure_equivariance<K>();
-    test_sampled_evolution<K>();
-    test_broken_down_robust_fit_not_returned<K>();
-    test_crease_evolution<K>();
-    test_branch_evolution<K>();
-  }
-  std::cout << (whole_runs ? "whole evolution runs with " : "part evolution with ") << kernel
+  test_shrink_to_fit<K>();
+  test_add_gradual_part<K>();
+  test_lengthened_into_base<K>();
+  test_pole_towards<K>();
+  test_region_inside_part<K>();
+  test_proposals_hold_data<K>();
+  test_no_over_splitting<K>();
+  test_remove_unpaid_parts<K>();
+  test_evolution_limits<K>();
+  test_small_evolution<K>();
+  std::cout << "part evolution with " << kernel << (blended_shape_test::failures() == before ? ": SUCCESS" : ": FAILED")
+            << std::endl;
+}
+
+// Part evolution's whole runs on scans (`fits_epick`, `fits_cartesian`: not
+// in sanitizer builds, whose checks they do not add to: they are about
+// geometry, and slow there). Apart from run_part_evolution(), so that CTest
+// runs them side by side: together they were the longest test, alone at the
+// end of the Release tests (the whole runs about 85 % of it).
+template <class K>
+void run_whole_evolution_runs(const char* kernel)
+{
+  const int before = blended_shape_test::failures();
+  test_split_model_fits_to_rest<K>();
+  test_fit_blended_shape<K>();
+  test_structure_equivariance<K>();
+  test_sampled_evolution<K>();
+  test_broken_down_robust_fit_not_returned<K>();
+  test_crease_evolution<K>();
+  test_branch_evolution<K>();
+  std::cout << "whole evolution runs with " << kernel
             << (blended_shape_test::failures() == before ? ": SUCCESS" : ": FAILED") << std::endl;
 }
 
@@ -2049,7 +2052,8 @@ int main(int argc, char** argv)
   }
   if(reduced && fits)
   {
-    std::cerr << "test_evolution " << part << ": not in sanitizer builds (see run_part_evolution())" << std::endl;
+    std::cerr << "test_evolution " << part << ": not in sanitizer builds (see run_whole_evolution_runs())"
+              << std::endl;
     return EXIT_FAILURE;
   }
   if(part == "all" || part == "regions")
@@ -2064,8 +2068,7 @@ int main(int argc, char** argv)
   }
   if(part == "all" || part == "parts")
   {
-    blended_shape_test::for_each_kernel(
-      [](auto kernel, const char* name) { run_part_evolution<decltype(kernel)>(name, false); });
+    blended_shape_test::for_each_kernel([](auto kernel, const char* name) { run_part_evolution<decltype(kernel)>(name); });
   }
   if((part == "all" && !reduced) || fits)
   {
@@ -2073,7 +2076,7 @@ int main(int argc, char** argv)
       typedef decltype(kernel) K;
       const bool epick = std::is_same<K, CGAL::Exact_predicates_inexact_constructions_kernel>::value;
       if(part == "all" || epick == (part == "fits_epick"))
-        run_part_evolution<K>(name, true);
+        run_whole_evolution_runs<K>(name);
     });
   }
   blended_shape_test::report("test_evolution " + part);
