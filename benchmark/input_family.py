@@ -42,13 +42,16 @@ def run_one(binary, outdir, r, extra):
     return path
 
 
-def load(outdir):
-    """{data: {input index: row}} from the CSV files of an OUTDIR."""
+def load(outdir, inputs=None):
+    """{data: {input index: row}} from the CSV files of an OUTDIR (of the
+    first `inputs` inputs only, if given: the directory may hold more)."""
     rows = {}
     for name in sorted(os.listdir(outdir)):
-        if not (name.startswith("r") and name.endswith(".csv")):
+        if not (name.startswith("r") and name.endswith(".csv") and name[1:-4].isdigit()):
             continue
         r = int(name[1:-4])
+        if inputs is not None and r >= inputs:
+            continue
         with open(os.path.join(outdir, name), newline="") as f:
             for row in csv.DictReader(f):
                 rows.setdefault(row["data"], {})[r] = row
@@ -88,8 +91,10 @@ def main():
     parser.add_argument("--jobs", type=int, default=2, help="programs at a time (default 2)")
     parser.add_argument("--compare", metavar="OLDDIR", help="an earlier OUTDIR to compare RMS_3 with, input by input")
     parser.add_argument("--summary-only", action="store_true", help="only summarize the CSV files already in OUTDIR")
-    parser.add_argument("extra", nargs="*", help="options passed on to reproduce_paper (after --)")
-    args = parser.parse_args()
+    # (what follows "--" goes to reproduce_paper as it is)
+    argv = sys.argv[1:]
+    extra = argv[argv.index("--") + 1:] if "--" in argv else []
+    args = parser.parse_args(argv[:argv.index("--")] if "--" in argv else argv)
     if args.inputs < 1 or args.jobs < 1:
         parser.error("--inputs and --jobs must be at least 1")
     if args.compare is not None and not os.path.isdir(args.compare):
@@ -100,7 +105,7 @@ def main():
                          "-DBLENDED_SHAPE_BUILD_BENCHMARKS=ON) or give --reproduce-paper" % args.reproduce_paper)
         os.makedirs(args.outdir, exist_ok=True)
         with ThreadPoolExecutor(max_workers=args.jobs) as pool:
-            futures = [pool.submit(run_one, args.reproduce_paper, args.outdir, r, args.extra)
+            futures = [pool.submit(run_one, args.reproduce_paper, args.outdir, r, extra)
                        for r in range(args.inputs)]
             try:
                 for f in futures:
@@ -110,7 +115,7 @@ def main():
                                                                                   args.outdir))
     elif not os.path.isdir(args.outdir):
         parser.error("%s is not a directory" % args.outdir)
-    rows = load(args.outdir)
+    rows = load(args.outdir, None if args.summary_only else args.inputs)
     if not rows:
         sys.exit("input_family: no CSV files in %s" % args.outdir)
     summary(rows, load(args.compare) if args.compare else None)
