@@ -870,8 +870,7 @@ void run(const char* kernel)
   // (near the equator, clear of the hole's end at the pole)
   test_chamfer_distance<K>("body with hole", hole, Region::make_parameters(0.85, 0., 0.1, 0.1, 0., 0.9, 0.));
   test_first_sweep_of_a_thin_part<K>();
-  std::cout << "blended fitting with " << kernel
-            << (blended_shape_test::failures() == before ? ": SUCCESS" : ": FAILED") << std::endl;
+  blended_shape_test::report(std::string("blended fitting with ") + kernel, before);
 }
 
 } // namespace

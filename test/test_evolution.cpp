@@ -1964,8 +1964,7 @@ void run_part_evolution(const char* kernel)
   test_remove_unpaid_parts<K>();
   test_evolution_limits<K>();
   test_small_evolution<K>();
-  std::cout << "part evolution with " << kernel << (blended_shape_test::failures() == before ? ": SUCCESS" : ": FAILED")
-            << std::endl;
+  blended_shape_test::report(std::string("part evolution with ") + kernel, before);
 }
 
 // Part evolution's whole runs on scans (`fits_epick`, `fits_cartesian`: not
@@ -1984,8 +1983,7 @@ void run_whole_evolution_runs(const char* kernel)
   test_broken_down_robust_fit_not_returned<K>();
   test_crease_evolution<K>();
   test_branch_evolution<K>();
-  std::cout << "whole evolution runs with " << kernel
-            << (blended_shape_test::failures() == before ? ": SUCCESS" : ": FAILED") << std::endl;
+  blended_shape_test::report(std::string("whole evolution runs with ") + kernel, before);
 }
 
 template <class K>
@@ -2004,8 +2002,7 @@ void run_force_regions(const char* kernel)
                           Eigen::Vector4d(std::sqrt(0.5), 0., std::sqrt(0.5), 0.), Eigen::Vector3d(1., 0., 0.),
                           false);
   test_bad_input<K>();
-  std::cout << "force regions with " << kernel << (blended_shape_test::failures() == before ? ": SUCCESS" : ": FAILED")
-            << std::endl;
+  blended_shape_test::report(std::string("force regions with ") + kernel, before);
 }
 
 // evolution_settings_from_named_parameters(): no parameter gives the

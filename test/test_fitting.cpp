@@ -968,8 +968,7 @@ void run(const char* kernel, bool full)
   test_similar_basin_search<K>();
   test_surface_area<K>(rng);
   test_area_term<K>(rng);
-  std::cout << "fitting with " << kernel << (blended_shape_test::failures() == before ? ": SUCCESS" : ": FAILED")
-            << std::endl;
+  blended_shape_test::report(std::string("fitting with ") + kernel, before);
 }
 
 } // namespace

@@ -933,8 +933,7 @@ void run_all(const char* kernel)
   test_boundary_circles<K>(rng);
   test_tube_chart_mesh<K>(rng);
   test_errors_and_domains<K>();
-  std::cout << "hole component with " << kernel
-            << (blended_shape_test::failures() == before ? ": SUCCESS" : ": FAILED") << std::endl;
+  blended_shape_test::report(std::string("hole component with ") + kernel, before);
 }
 
 } // namespace

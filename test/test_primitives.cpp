@@ -707,8 +707,7 @@ void run_all(const char* kernel)
   test_initialization<K>(rng);
   test_bad_parameters<K>();
   test_radial_projection<K>(rng);
-  std::cout << "primitives with " << kernel
-            << (blended_shape_test::failures() == before ? ": SUCCESS" : ": FAILED") << std::endl;
+  blended_shape_test::report(std::string("primitives with ") + kernel, before);
 }
 
 } // namespace

@@ -17,9 +17,10 @@ constexpr bool reduced = true;
 constexpr bool reduced = false;
 #endif
 inline int& failures() { static int n = 0; return n; }
-inline void report(const std::string& name)
+// "name: SUCCESS" if no check failed since there were `before` failures.
+inline void report(const std::string& name, int before = 0)
 {
-  std::cout << name << (failures() == 0 ? ": SUCCESS" : ": FAILED") << std::endl;
+  std::cout << name << (failures() == before ? ": SUCCESS" : ": FAILED") << std::endl;
 }
 inline int exit_code() { return failures() == 0 ? EXIT_SUCCESS : EXIT_FAILURE; }
 } // namespace blended_shape_test
