@@ -7,8 +7,17 @@
 // the shape unchanged, regions in discarded parts are refused, a part on a
 // part; the per-component pieces (sec. 3.3) against a brute-force
 // classification. Both supported kernels.
+#include "test_kernels.h"
 #include "test_util.h"
 #include "blended_shape_test_util.h"
+
+// The program's other parts (see main()).
+#include "blended_shape_io_checks.h"
+#include "blended_shape_mesh_io_checks.h"
+#include "blending_hierarchy_checks.h"
+#include "blending_region_checks.h"
+#include "hole_component_checks.h"
+#include "quotient_domain_checks.h"
 
 #include <CGAL/Blended_shape/Blending/Blended_shape.h>
 #include <CGAL/Blended_shape/Blending/Blended_shape_mesh.h>
@@ -1409,12 +1418,18 @@ void run(const char* kernel)
 
 } // namespace
 
-int main()
+// The blended shape's representation as one program of seven parts: this
+// file's checks (`core`) and those of the headers included above.
+int main(int argc, char** argv)
 {
-#ifndef BLENDED_SHAPE_ONE_KERNEL // sanitizer builds: Epick only (see test/CMakeLists.txt)
-  run<CGAL::Simple_cartesian<double>>("Simple_cartesian<double>");
-#endif
-  run<CGAL::Exact_predicates_inexact_constructions_kernel>("Epick");
-  blended_shape_test::report("test_blended_shape");
-  return blended_shape_test::exit_code();
+  return blended_shape_test::run_parts(argc, argv, "test_blended_shape", {
+    {"core", [] {
+       blended_shape_test::for_each_kernel([](auto kernel, const char* name) { run<decltype(kernel)>(name); });
+     }},
+    {"quotient_domain", quotient_domain_checks::run_all},
+    {"io", blended_shape_io_checks::run_all},
+    {"mesh_io", blended_shape_mesh_io_checks::run_all},
+    {"hierarchy", blending_hierarchy_checks::run_all},
+    {"hole_component", hole_component_checks::run_all},
+    {"blending_region", blending_region_checks::run_all}});
 }

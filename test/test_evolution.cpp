@@ -2038,44 +2038,26 @@ void test_evolution_settings_from_named_parameters()
 
 int main(int argc, char** argv)
 {
-  // (`fits_epick`, `fits_cartesian`: the whole runs with one kernel each, as
-  // two tests that CTest runs side by side; `all` runs every part)
-  const std::string part = argc > 1 ? argv[1] : "all";
-  const bool fits = part == "fits_epick" || part == "fits_cartesian";
-  if(argc > 2 || (part != "all" && part != "regions" && part != "parts" && !fits && part != "segments"))
+  std::vector<blended_shape_test::Test_part> parts = {
+    {"regions", [] {
+       blended_shape_test::for_each_kernel([](auto kernel, const char* name) { run_force_regions<decltype(kernel)>(name); });
+     }},
+    {"segments", [] {
+       test_evolution_settings_from_named_parameters();
+       test_crease_segments(); // (no kernel: points as Eigen vectors)
+       test_branch_segments<CGAL::Exact_predicates_inexact_constructions_kernel>(); // (the kernel samples the shapes only)
+     }},
+    {"parts", [] {
+       blended_shape_test::for_each_kernel([](auto kernel, const char* name) { run_part_evolution<decltype(kernel)>(name); });
+     }}};
+  // The whole runs on scans, one kernel each (two tests that CTest runs side
+  // by side); not in sanitizer builds (see run_whole_evolution_runs()).
+  if(!reduced)
   {
-    std::cerr << "usage: test_evolution [all|regions|parts|fits_epick|fits_cartesian|segments]" << std::endl;
-    return EXIT_FAILURE;
+    parts.push_back({"fits_epick", [] { run_whole_evolution_runs<CGAL::Exact_predicates_inexact_constructions_kernel>("Epick"); }});
+#ifndef BLENDED_SHAPE_ONE_KERNEL
+    parts.push_back({"fits_cartesian", [] { run_whole_evolution_runs<CGAL::Simple_cartesian<double>>("Simple_cartesian<double>"); }});
+#endif
   }
-  if(reduced && fits)
-  {
-    std::cerr << "test_evolution " << part << ": not in sanitizer builds (see run_whole_evolution_runs())"
-              << std::endl;
-    return EXIT_FAILURE;
-  }
-  if(part == "all" || part == "regions")
-  {
-    blended_shape_test::for_each_kernel([](auto kernel, const char* name) { run_force_regions<decltype(kernel)>(name); });
-  }
-  if(part == "all" || part == "segments")
-  {
-    test_evolution_settings_from_named_parameters();
-    test_crease_segments(); // (no kernel: points as Eigen vectors)
-    test_branch_segments<CGAL::Exact_predicates_inexact_constructions_kernel>(); // (the kernel samples the shapes only)
-  }
-  if(part == "all" || part == "parts")
-  {
-    blended_shape_test::for_each_kernel([](auto kernel, const char* name) { run_part_evolution<decltype(kernel)>(name); });
-  }
-  if((part == "all" && !reduced) || fits)
-  {
-    blended_shape_test::for_each_kernel([&](auto kernel, const char* name) {
-      typedef decltype(kernel) K;
-      const bool epick = std::is_same<K, CGAL::Exact_predicates_inexact_constructions_kernel>::value;
-      if(part == "all" || epick == (part == "fits_epick"))
-        run_whole_evolution_runs<K>(name);
-    });
-  }
-  blended_shape_test::report("test_evolution " + part);
-  return blended_shape_test::exit_code();
+  return blended_shape_test::run_parts(argc, argv, "test_evolution", parts);
 }

@@ -975,27 +975,17 @@ void run(const char* kernel, bool full)
 
 int main(int argc, char** argv)
 {
-  const std::string part = argc > 1 ? argv[1] : "all";
-  if(argc > 2 || (part != "all" && part != "basic" && part != "scale" && part != "strays"))
-  {
-    std::cerr << "usage: test_fitting [all|basic|scale|strays]" << std::endl;
-    return EXIT_FAILURE;
-  }
-  if(part == "all" || part == "basic")
-  {
-    test_settings_from_named_parameters();
-    test_box_constrained_step_against_brute_force();
-    // the full set of cases with the first kernel (Epick), a smaller one with the others
-    bool first = true;
-    blended_shape_test::for_each_kernel([&](auto kernel, const char* name) {
-      run<decltype(kernel)>(name, first);
-      first = false;
-    });
-  }
-  if(part == "all" || part == "scale")
-    fitting_scale_checks::run_all();
-  if(part == "all" || part == "strays")
-    stray_point_checks::run_all();
-  blended_shape_test::report("test_fitting " + part);
-  return blended_shape_test::exit_code();
+  return blended_shape_test::run_parts(argc, argv, "test_fitting", {
+    {"basic", [] {
+       test_settings_from_named_parameters();
+       test_box_constrained_step_against_brute_force();
+       // the full set of cases with the first kernel (Epick), a smaller one with the others
+       bool first = true;
+       blended_shape_test::for_each_kernel([&](auto kernel, const char* name) {
+         run<decltype(kernel)>(name, first);
+         first = false;
+       });
+     }},
+    {"scale", fitting_scale_checks::run_all},
+    {"strays", stray_point_checks::run_all}});
 }

@@ -5,8 +5,10 @@
 #define CGAL_BLENDED_SHAPE_TEST_UTIL_H
 
 #include <cstdlib>
+#include <functional>
 #include <iostream>
 #include <string>
+#include <vector>
 
 namespace blended_shape_test {
 // Sanitizer builds (BLENDED_SHAPE_REDUCED_TESTS, see the top-level
@@ -23,6 +25,41 @@ inline void report(const std::string& name, int before = 0)
   std::cout << name << (failures() == before ? ": SUCCESS" : ": FAILED") << std::endl;
 }
 inline int exit_code() { return failures() == 0 ? EXIT_SUCCESS : EXIT_FAILURE; }
+
+// A test program made of parts that share one compilation of what they test
+// (compiling the package's templates once per program, not once per part, is
+// what keeps the build short): `program [all|part]` runs one part, or every
+// part in turn; CTest runs each part as its own test (`program_part`). Prints
+// "program part: SUCCESS" or "FAILED" per part run; returns the exit code.
+struct Test_part
+{
+  std::string name;
+  std::function<void()> run;
+};
+inline int run_parts(int argc, char** argv, const std::string& program, const std::vector<Test_part>& parts)
+{
+  const std::string asked = argc > 1 ? argv[1] : "all";
+  bool known = asked == "all";
+  std::string names = "all";
+  for(const auto& part : parts)
+  {
+    known = known || part.name == asked;
+    names += "|" + part.name;
+  }
+  if(argc > 2 || !known)
+  {
+    std::cerr << "usage: " << program << " [" << names << "]" << std::endl;
+    return EXIT_FAILURE;
+  }
+  for(const auto& part : parts)
+    if(asked == "all" || asked == part.name)
+    {
+      const int before = failures();
+      part.run();
+      report(program + " " + part.name, before);
+    }
+  return exit_code();
+}
 } // namespace blended_shape_test
 
 #define BS_CHECK(cond, what)                                                         \

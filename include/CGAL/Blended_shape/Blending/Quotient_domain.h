@@ -225,7 +225,7 @@ attached to the corners of the canonical face that contains its canonical
 point, like a glued node; two points in the same face are also joined
 directly. More rings give the paths more directions to choose from, so the
 distance overestimates the geodesic less. Measured on the unit sphere at
-resolution 16 (`max_edge_length()` 0.166, test `test_quotient_domain`),
+resolution 16 (`max_edge_length()` 0.166, test `test_blended_shape_quotient_domain`),
 the distance exceeds the great-circle distance by at most 1.7 edge lengths
 (13 % of long distances) with 1 ring, 0.8 edge lengths (6 %) with 2 rings
 and 0.6 edge lengths (4 %) with 3 rings, the default. From below, the

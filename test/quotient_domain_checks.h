@@ -7,6 +7,11 @@
 // gradual part) and around a handle (a torus-like model whose points are close
 // in space and far on the surface); metric properties; bad input. Both
 // supported kernels.
+#ifndef BLENDED_SHAPE_QUOTIENT_DOMAIN_CHECKS_H
+#define BLENDED_SHAPE_QUOTIENT_DOMAIN_CHECKS_H
+// Part of test_blended_shape (one program, one compilation of the blended
+// shape for each kernel; CTest runs it as `test_blended_shape_quotient_domain`).
+#include "test_kernels.h"
 #include "test_util.h"
 #include "blended_shape_test_util.h"
 
@@ -36,9 +41,9 @@
 #include <utility>
 #include <vector>
 
-namespace BS = CGAL::Blended_shapes;
+namespace quotient_domain_checks {
 
-namespace {
+namespace BS = CGAL::Blended_shapes;
 
 using blended_shape_test::set_parameter;
 using blended_shape_test::perturb_component;
@@ -230,7 +235,10 @@ public:
     for(const auto& c : q.corners)
       boost::add_edge(source, c.first, c.second, m_graph);
     std::vector<double> d(boost::num_vertices(m_graph));
-    boost::dijkstra_shortest_paths(m_graph, source, boost::distance_map(d.data()));
+    // (an iterator property map, not d.data(): the raw pointer's get() is
+    // found by a lookup that depends on which Boost headers came first)
+    boost::dijkstra_shortest_paths(m_graph, source, boost::distance_map(
+      boost::make_iterator_property_map(d.begin(), boost::get(boost::vertex_index, m_graph))));
     return d;
   }
 
@@ -383,7 +391,6 @@ void report_agreement(const std::string& name, const Agreement& a, double ring)
             << "; " << a.max_global_rings << " of the global ring " << ring << "), max relative " << a.max_relative
             << " (at distance " << a.relative_distance << ", local ring " << a.relative_ring << ")" << std::endl;
 }
-
 
 // Every node reachable from node 0; some edges glue different charts or components.
 template <class K>
@@ -673,14 +680,12 @@ void run(const char* kernel)
   test_bad_input<K>();
 }
 
-} // namespace
-
-int main()
+// Every check of this part.
+void run_all()
 {
-#ifndef BLENDED_SHAPE_ONE_KERNEL // sanitizer builds: Epick only (see test/CMakeLists.txt)
-  run<CGAL::Simple_cartesian<double>>("Simple_cartesian<double>");
-#endif
-  run<CGAL::Exact_predicates_inexact_constructions_kernel>("Epick");
-  blended_shape_test::report("test_quotient_domain");
-  return blended_shape_test::exit_code();
+  blended_shape_test::for_each_kernel([](auto kernel, const char* name) { run<decltype(kernel)>(name); });
 }
+
+} // namespace quotient_domain_checks
+
+#endif // BLENDED_SHAPE_QUOTIENT_DOMAIN_CHECKS_H

@@ -6,6 +6,10 @@
 // bit (parameters, structure, evaluated points, the written text), the file
 // functions, and corrupt or truncated inputs, which must throw Input_error
 // with a useful message, with both supported kernels.
+#ifndef BLENDED_SHAPE_BLENDED_SHAPE_IO_CHECKS_H
+#define BLENDED_SHAPE_BLENDED_SHAPE_IO_CHECKS_H
+// Part of test_blended_shape (one program, one compilation of the blended
+// shape for each kernel; CTest runs it as `test_blended_shape_io`).
 #include "test_util.h"
 
 #include <CGAL/Blended_shape/Blending/Blended_shape.h>
@@ -36,10 +40,10 @@
 #include <utility>
 #include <vector>
 
+namespace blended_shape_io_checks {
+
 namespace BS = CGAL::Blended_shapes;
 namespace json = CGAL::Blended_shapes::internal; // the JSON layer: json_text.h
-
-namespace {
 
 std::mt19937_64 rng(20240917);
 double uniform(double a, double b) { return std::uniform_real_distribution<double>(a, b)(rng); }
@@ -1042,9 +1046,8 @@ struct Io_tests
   }
 };
 
-} // namespace
-
-int main()
+// Every check of this part.
+void run_all()
 {
   test_json();
 #ifndef BLENDED_SHAPE_ONE_KERNEL // sanitizer builds: Epick only (see test/CMakeLists.txt)
@@ -1059,6 +1062,8 @@ int main()
     t.run();
     t.test_unknown_primitive<CGAL::Simple_cartesian<double>>();
   }
-  blended_shape_test::report("test_blended_shape_io");
-  return blended_shape_test::exit_code();
 }
+
+} // namespace blended_shape_io_checks
+
+#endif // BLENDED_SHAPE_BLENDED_SHAPE_IO_CHECKS_H

@@ -3,6 +3,10 @@
 // Bezier loop and its strip, strip coordinates and their inverse, sides,
 // de Casteljau subdivision, the ellipse-shaped parameterization, and every
 // analytic derivative against central finite differences.
+#ifndef BLENDED_SHAPE_BLENDING_REGION_CHECKS_H
+#define BLENDED_SHAPE_BLENDING_REGION_CHECKS_H
+// Part of test_blended_shape (one program, one compilation of the blended
+// shape for each kernel; CTest runs it as `test_blended_shape_blending_region`).
 #include "test_util.h"
 
 #include <CGAL/Blended_shape/Blending/Blending_function.h>
@@ -22,11 +26,11 @@
 #include <stdexcept>
 #include <vector>
 
+namespace blending_region_checks {
+
 namespace BS = CGAL::Blended_shapes;
 typedef Eigen::Vector2d V2;
 typedef BS::Ellipse_blending_region Ellipse;
-
-namespace {
 
 std::mt19937_64 rng(20240611);
 double uniform(double a, double b) { return std::uniform_real_distribution<double>(a, b)(rng); }
@@ -891,9 +895,8 @@ void test_bad_inputs()
   BS_CHECK(throws_invalid([&] { r.set_retained_side(BS::Retained_side::Inside); }), "disk keeping its inside");
 }
 
-} // namespace
-
-int main()
+// Every check of this part.
+void run_all()
 {
   test_blending_function();
   const std::vector<Region_case> cases = regions_for_coordinates();
@@ -902,6 +905,8 @@ int main()
   test_derivatives();
   test_ellipse_approximation();
   test_bad_inputs();
-  blended_shape_test::report("test_blending_region");
-  return blended_shape_test::exit_code();
 }
+
+} // namespace blending_region_checks
+
+#endif // BLENDED_SHAPE_BLENDING_REGION_CHECKS_H

@@ -6,6 +6,10 @@
 // three nested splits and a part, one hole (closed and open), a hole between
 // two parts, two holes, blends listed out of order, a loose component.
 // Both supported kernels.
+#ifndef BLENDED_SHAPE_BLENDING_HIERARCHY_CHECKS_H
+#define BLENDED_SHAPE_BLENDING_HIERARCHY_CHECKS_H
+// Part of test_blended_shape (one program, one compilation of the blended
+// shape for each kernel; CTest runs it as `test_blended_shape_hierarchy`).
 #include "test_util.h"
 #include "blended_shape_test_util.h"
 
@@ -32,9 +36,9 @@
 
 #include <unistd.h>
 
-namespace BS = CGAL::Blended_shapes;
+namespace blending_hierarchy_checks {
 
-namespace {
+namespace BS = CGAL::Blended_shapes;
 
 using blended_shape_test::set_parameter;
 
@@ -584,14 +588,15 @@ void run(const char* kernel, const std::string& tag)
   test_file_writer<K>(tag, two);
 }
 
-} // namespace
-
-int main()
+// Every check of this part.
+void run_all()
 {
 #ifndef BLENDED_SHAPE_ONE_KERNEL // sanitizer builds: Epick only (see test/CMakeLists.txt)
   run<CGAL::Simple_cartesian<double>>("Simple_cartesian<double>", "sc");
 #endif
   run<CGAL::Exact_predicates_inexact_constructions_kernel>("Epick", "epick");
-  blended_shape_test::report("test_blending_hierarchy");
-  return blended_shape_test::exit_code();
 }
+
+} // namespace blending_hierarchy_checks
+
+#endif // BLENDED_SHAPE_BLENDING_HIERARCHY_CHECKS_H

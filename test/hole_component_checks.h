@@ -5,6 +5,11 @@
 // normals and chart orientation, the circles where the hole is glued to the
 // base, the tube chart (Chart_kind::Tube: its chart mesh, random chart points,
 // the generic checks on it), and the errors, with both supported kernels.
+#ifndef BLENDED_SHAPE_HOLE_COMPONENT_CHECKS_H
+#define BLENDED_SHAPE_HOLE_COMPONENT_CHECKS_H
+// Part of test_blended_shape (one program, one compilation of the blended
+// shape for each kernel; CTest runs it as `test_blended_shape_hole_component`).
+#include "test_kernels.h"
 #include "test_util.h"
 
 #include <CGAL/Blended_shape/Primitives/Chart_mesh.h>
@@ -29,9 +34,9 @@
 #include <string>
 #include <vector>
 
-namespace BS = CGAL::Blended_shapes;
+namespace hole_component_checks {
 
-namespace {
+namespace BS = CGAL::Blended_shapes;
 
 const double two_pi = 2. * M_PI;
 
@@ -921,7 +926,7 @@ void test_errors_and_domains()
 }
 
 template <class K>
-void run_all(const char* kernel)
+void run_with_kernel(const char* kernel)
 {
   std::mt19937_64 rng(20261201);
   const int before = blended_shape_test::failures();
@@ -936,14 +941,12 @@ void run_all(const char* kernel)
   blended_shape_test::report(std::string("hole component with ") + kernel, before);
 }
 
-} // namespace
-
-int main()
+// Every check of this part.
+void run_all()
 {
-#ifndef BLENDED_SHAPE_ONE_KERNEL // sanitizer builds: Epick only (see test/CMakeLists.txt)
-  run_all<CGAL::Simple_cartesian<double>>("Simple_cartesian<double>");
-#endif
-  run_all<CGAL::Exact_predicates_inexact_constructions_kernel>("Epick");
-  blended_shape_test::report("test_hole_component");
-  return blended_shape_test::exit_code();
+  blended_shape_test::for_each_kernel([](auto kernel, const char* name) { run_with_kernel<decltype(kernel)>(name); });
 }
+
+} // namespace hole_component_checks
+
+#endif // BLENDED_SHAPE_HOLE_COMPONENT_CHECKS_H

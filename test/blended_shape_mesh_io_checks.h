@@ -7,6 +7,10 @@
 // directory as the path, an empty path, a non-finite vertex, a mesh that
 // cannot be built) must throw and leave no file, and must not touch an
 // existing one. Both supported kernels.
+#ifndef BLENDED_SHAPE_BLENDED_SHAPE_MESH_IO_CHECKS_H
+#define BLENDED_SHAPE_BLENDED_SHAPE_MESH_IO_CHECKS_H
+// Part of test_blended_shape (one program, one compilation of the blended
+// shape for each kernel; CTest runs it as `test_blended_shape_mesh_io`).
 #include "test_kernels.h"
 #include "test_util.h"
 #include "blended_shape_test_util.h"
@@ -39,10 +43,10 @@
 #include <tuple>
 #include <vector>
 
+namespace blended_shape_mesh_io_checks {
+
 namespace BS = CGAL::Blended_shapes;
 namespace fs = std::filesystem;
-
-namespace {
 
 using blended_shape_test::set_parameter;
 
@@ -331,11 +335,12 @@ struct Tester
   }
 };
 
-} // namespace
-
-int main()
+// Every check of this part.
+void run_all()
 {
   blended_shape_test::for_each_kernel([](auto kernel, const char* name) { Tester<decltype(kernel)>{name, {}}.run(); });
-  blended_shape_test::report("test_blended_shape_mesh_io");
-  return blended_shape_test::exit_code();
 }
+
+} // namespace blended_shape_mesh_io_checks
+
+#endif // BLENDED_SHAPE_BLENDED_SHAPE_MESH_IO_CHECKS_H
