@@ -4,11 +4,14 @@
 // integrators, recovery of random superellipsoids, equivariance,
 // determinism, abort, bad input, and the settings read from named
 // parameters. The same program runs the fits at any scale and place
-// (fitting_scale_checks.h) and among stray points (stray_point_checks.h):
-// one compilation of the fitter for the three, run by CTest as three tests
-// (`test_fitting basic`, `test_fitting scale`, `test_fitting strays`).
+// (fitting_scale_checks.h), among stray points (stray_point_checks.h) and
+// of blended shapes of fixed structure (blended_fitting_checks.h): one
+// compilation of the fitter for the four, run by CTest as four tests
+// (`test_fitting basic`, `test_fitting scale`, `test_fitting strays`,
+// `test_fitting blended`).
 #include "test_kernels.h"
 #include "test_util.h"
+#include "blended_fitting_checks.h"
 #include "fitting_scale_checks.h"
 #include "stray_point_checks.h"
 
@@ -987,5 +990,6 @@ int main(int argc, char** argv)
        });
      }},
     {"scale", fitting_scale_checks::run_all},
+    {"blended", blended_fitting_checks::run_all},
     {"strays", stray_point_checks::run_all}});
 }

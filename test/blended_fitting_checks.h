@@ -8,6 +8,11 @@
 // parameters (hold_parameter()) kept by the fit; the Chamfer distance of a
 // blended model; the first closest-point sweep of a model whose blend the
 // tessellation misses (Fitting_settings::projection_start_samples).
+#ifndef BLENDED_SHAPE_BLENDED_FITTING_CHECKS_H
+#define BLENDED_SHAPE_BLENDED_FITTING_CHECKS_H
+// Part of test_fitting (one program, one compilation of the fitter for each
+// kernel; CTest runs it as `test_fitting_blended`).
+#include "test_kernels.h"
 #include "test_util.h"
 #include "blended_shape_test_util.h"
 
@@ -28,9 +33,9 @@
 #include <random>
 #include <sstream>
 
-namespace BS = CGAL::Blended_shapes;
+namespace blended_fitting_checks {
 
-namespace {
+namespace BS = CGAL::Blended_shapes;
 
 using blended_shape_test::reduced;
 
@@ -873,14 +878,12 @@ void run(const char* kernel)
   blended_shape_test::report(std::string("blended fitting with ") + kernel, before);
 }
 
-} // namespace
-
-int main()
+// Every check of this part.
+void run_all()
 {
-  run<CGAL::Exact_predicates_inexact_constructions_kernel>("Epick");
-#ifndef BLENDED_SHAPE_ONE_KERNEL // sanitizer builds: Epick only (see test/CMakeLists.txt)
-  run<CGAL::Simple_cartesian<double>>("Simple_cartesian<double>");
-#endif
-  blended_shape_test::report("test_blended_fitting");
-  return blended_shape_test::exit_code();
+  blended_shape_test::for_each_kernel([](auto kernel, const char* name) { run<decltype(kernel)>(name); });
 }
+
+} // namespace blended_fitting_checks
+
+#endif // BLENDED_SHAPE_BLENDED_FITTING_CHECKS_H
