@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: LGPL-3.0-or-later
 // Helpers shared by the blended-shape test programs: setting one named
-// parameter, and moving and reshaping a component a little.
+// parameter, moving and reshaping a component a little, opening a pole hole.
 #ifndef CGAL_BLENDED_SHAPE_BLENDED_SHAPE_TEST_UTIL_H
 #define CGAL_BLENDED_SHAPE_BLENDED_SHAPE_TEST_UTIL_H
 
@@ -48,6 +48,23 @@ void perturb_component(Shape& s, std::size_t c, double amount)
   q[Eigen::Index(so)] *= 1. + 0.15 * amount;
   q[Eigen::Index(so + 1)] *= 1. - 0.1 * amount;
   s.set_parameters(q);
+}
+
+// Opens the closed hole of a sphere with one hole from pole to pole (its
+// blends b0 and b1, its tube component c1): both blends down to h = 0, the
+// hole switched to its tube, which is then widened: the tunnel of a genus-1
+// test shape.
+template <class Shape>
+void open_pole_hole(Shape& s)
+{
+  set_parameter(s, "b0.h", 0.);
+  set_parameter(s, "b1.h", 0.);
+  s.switch_hole_to_tube(0);
+  set_parameter(s, "b0.w", 0.9);
+  set_parameter(s, "b1.w", 0.8);
+  set_parameter(s, "c1.a4", 1.3);
+  set_parameter(s, "c1.a5", 1.25);
+  set_parameter(s, "c1.e1", 0.9);
 }
 
 } // namespace blended_shape_test

@@ -97,14 +97,7 @@ Shape<K> sphere_with_tunnel()
   Shape<K> s(BS::Superquadric_ellipsoid<K>(1., 1., 1., 1., 1.));
   s.add_hole(BS::Shape_point(0, BS::Chart_point(0, 0.05, 0.)), BS::Shape_point(0, BS::Chart_point(1, 0., 0.05)), 0.3,
              0.08, 0.1);
-  set_parameter(s, "b0.h", 0.);
-  set_parameter(s, "b1.h", 0.);
-  s.switch_hole_to_tube(0);
-  set_parameter(s, "b0.w", 0.9);
-  set_parameter(s, "b1.w", 0.8);
-  set_parameter(s, "c1.a4", 1.3);
-  set_parameter(s, "c1.a5", 1.25);
-  set_parameter(s, "c1.e1", 0.9);
+  blended_shape_test::open_pole_hole(s);
   return s;
 }
 

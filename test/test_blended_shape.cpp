@@ -131,14 +131,7 @@ std::map<std::string, std::function<Shape<K>()>> configurations()
   };
   m["hole_tube"] = [] {
     Shape<K> s = sphere_with_pole_hole<K>();
-    set_parameter(s, "b0.h", 0.);
-    set_parameter(s, "b1.h", 0.);
-    s.switch_hole_to_tube(0);
-    set_parameter(s, "b0.w", 0.9);
-    set_parameter(s, "b1.w", 0.8);
-    set_parameter(s, "c1.a4", 1.3);
-    set_parameter(s, "c1.a5", 1.25);
-    set_parameter(s, "c1.e1", 0.9);
+    blended_shape_test::open_pole_hole(s);
     return s;
   };
   return m;
