@@ -250,7 +250,7 @@ void test_one_pass_evaluation(const std::string& name, const Model<K>& m)
       BS::Chart_point c3;
       typename Model<K>::Chart_jacobian D3;
       typename K::Point_3 x3 = CGAL::ORIGIN;
-      typename K::Vector_3 n3;
+      typename K::Vector_3 n3 = CGAL::NULL_VECTOR; // (not written when b3 is false)
       const bool b3 = m.canonical_surface_point_chart_jacobian_and_normal(w, c3, x3, D3, &n3);
       if(!b3 || !(x3 == x2) || !(D3.array() == D2.array()).all())
         ++differ;

@@ -5,13 +5,17 @@
 // determinism, abort, bad input, and the settings read from named
 // parameters. The same program runs the fits at any scale and place
 // (fitting_scale_checks.h), among stray points (stray_point_checks.h) and
-// of blended shapes of fixed structure (blended_fitting_checks.h): one
-// compilation of the fitter for the four, run by CTest as four tests
-// (`test_fitting basic`, `test_fitting scale`, `test_fitting strays`,
-// `test_fitting blended`).
+// of blended shapes of fixed structure (blended_fitting_checks.h), and
+// part evolution, which fits on after every change of structure
+// (evolution_checks.h): one compilation of the fitter and of what it
+// instantiates for the five, run by CTest as one test per part
+// (`test_fitting basic`, `scale`, `strays`, `blended`, then evolution's
+// `regions`, `segments`, `evolution`, and in Release builds
+// `evolution_epick`, `evolution_cartesian`).
 #include "test_kernels.h"
 #include "test_util.h"
 #include "blended_fitting_checks.h"
+#include "evolution_checks.h"
 #include "fitting_scale_checks.h"
 #include "stray_point_checks.h"
 
@@ -978,7 +982,7 @@ void run(const char* kernel, bool full)
 
 int main(int argc, char** argv)
 {
-  return blended_shape_test::run_parts(argc, argv, "test_fitting", {
+  std::vector<blended_shape_test::Test_part> parts = {
     {"basic", [] {
        test_settings_from_named_parameters();
        test_box_constrained_step_against_brute_force();
@@ -991,5 +995,10 @@ int main(int argc, char** argv)
      }},
     {"scale", fitting_scale_checks::run_all},
     {"blended", blended_fitting_checks::run_all},
-    {"strays", stray_point_checks::run_all}});
+    {"strays", stray_point_checks::run_all},
+    {"regions", evolution_checks::run_regions},
+    {"segments", evolution_checks::run_segments},
+    {"evolution", evolution_checks::run_evolution}};
+  evolution_checks::add_whole_runs(parts);
+  return blended_shape_test::run_parts(argc, argv, "test_fitting", parts);
 }

@@ -13,8 +13,14 @@
 // event, the abort callback and the part limit leave a valid model, bad
 // settings are refused. Both supported kernels. The crease segments of the
 // data (a cylinder on a box: the box and the cylinder; a superellipsoid: one).
-// CTest runs the force analysis as `test_evolution regions`, part evolution
-// as `test_evolution parts`, the crease segments as `test_evolution segments`.
+#ifndef BLENDED_SHAPE_EVOLUTION_CHECKS_H
+#define BLENDED_SHAPE_EVOLUTION_CHECKS_H
+// Part of test_fitting (one program, one compilation of the fitter and the
+// evolution for each kernel; CTest runs the force analysis as
+// `test_fitting_regions`, part evolution's steps and limits as
+// `test_fitting_evolution`, the crease and branch segments as
+// `test_fitting_segments`, the whole runs on scans as
+// `test_fitting_evolution_epick` and `test_fitting_evolution_cartesian`).
 #include "test_kernels.h"
 #include "test_util.h"
 
@@ -55,9 +61,9 @@
 #include <type_traits>
 #include <vector>
 
-namespace BS = CGAL::Blended_shapes;
+namespace evolution_checks {
 
-namespace {
+namespace BS = CGAL::Blended_shapes;
 
 using blended_shape_test::reduced;
 
@@ -1949,7 +1955,7 @@ void test_small_evolution()
             << std::endl;
 }
 
-// Part evolution's steps and limits (`parts`).
+// Part evolution's steps and limits (`evolution`).
 template <class K>
 void run_part_evolution(const char* kernel)
 {
@@ -1967,7 +1973,7 @@ void run_part_evolution(const char* kernel)
   blended_shape_test::report(std::string("part evolution with ") + kernel, before);
 }
 
-// Part evolution's whole runs on scans (`fits_epick`, `fits_cartesian`: not
+// Part evolution's whole runs on scans (`evolution_epick`, `evolution_cartesian`: not
 // in sanitizer builds, whose checks they do not add to: they are about
 // geometry, and slow there). Apart from run_part_evolution(), so that CTest
 // runs them side by side: together they were the longest test, alone at the
@@ -2041,30 +2047,40 @@ void test_evolution_settings_from_named_parameters()
            "a named parameter did not reach its member of Evolution_settings");
 }
 
-} // namespace
-
-int main(int argc, char** argv)
+// The parts of test_fitting that are evolution's.
+inline void run_regions()
 {
-  std::vector<blended_shape_test::Test_part> parts = {
-    {"regions", [] {
-       blended_shape_test::for_each_kernel([](auto kernel, const char* name) { run_force_regions<decltype(kernel)>(name); });
-     }},
-    {"segments", [] {
-       test_evolution_settings_from_named_parameters();
-       test_crease_segments(); // (no kernel: points as Eigen vectors)
-       test_branch_segments<CGAL::Exact_predicates_inexact_constructions_kernel>(); // (the kernel samples the shapes only)
-     }},
-    {"parts", [] {
-       blended_shape_test::for_each_kernel([](auto kernel, const char* name) { run_part_evolution<decltype(kernel)>(name); });
-     }}};
-  // The whole runs on scans, one kernel each (two tests that CTest runs side
-  // by side); not in sanitizer builds (see run_whole_evolution_runs()).
-  if(!reduced)
-  {
-    parts.push_back({"fits_epick", [] { run_whole_evolution_runs<CGAL::Exact_predicates_inexact_constructions_kernel>("Epick"); }});
-#ifndef BLENDED_SHAPE_ONE_KERNEL
-    parts.push_back({"fits_cartesian", [] { run_whole_evolution_runs<CGAL::Simple_cartesian<double>>("Simple_cartesian<double>"); }});
-#endif
-  }
-  return blended_shape_test::run_parts(argc, argv, "test_evolution", parts);
+  blended_shape_test::for_each_kernel([](auto kernel, const char* name) { run_force_regions<decltype(kernel)>(name); });
 }
+
+inline void run_segments()
+{
+  test_evolution_settings_from_named_parameters();
+  test_crease_segments(); // (no kernel: points as Eigen vectors)
+  test_branch_segments<CGAL::Exact_predicates_inexact_constructions_kernel>(); // (the kernel samples the shapes only)
+}
+
+inline void run_evolution()
+{
+  blended_shape_test::for_each_kernel([](auto kernel, const char* name) { run_part_evolution<decltype(kernel)>(name); });
+}
+
+// The whole runs on scans, one kernel each (two tests that CTest runs side
+// by side); not in sanitizer builds (see run_whole_evolution_runs()).
+inline void add_whole_runs(std::vector<blended_shape_test::Test_part>& parts)
+{
+  if(reduced)
+    return;
+  parts.push_back({"evolution_epick", [] {
+                     run_whole_evolution_runs<CGAL::Exact_predicates_inexact_constructions_kernel>("Epick");
+                   }});
+#ifndef BLENDED_SHAPE_ONE_KERNEL
+  parts.push_back({"evolution_cartesian", [] {
+                     run_whole_evolution_runs<CGAL::Simple_cartesian<double>>("Simple_cartesian<double>");
+                   }});
+#endif
+}
+
+} // namespace evolution_checks
+
+#endif
