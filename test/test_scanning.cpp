@@ -830,6 +830,29 @@ void test_cad_objects()
   report("cad_objects", before);
 }
 
+// The box and the cylinder as two overlapping solids
+// (internal::box_cylinder_solids(), which test_fitting scans instead of
+// make_box_cylinder() so as not to compile the corefinement) look like their
+// union: the default camera is the same (the same bounding box), and every
+// ray meets the same surface first, up to rounding where the union's
+// triangles are split along the box's top.
+void test_box_cylinder_solids_scan_like_the_union()
+{
+  const int before = failures();
+  const BS::CAD_mesh object = BS::make_box_cylinder();
+  auto [solids, cylinder] = BS::internal::box_cylinder_solids(BS::Box_cylinder_parameters(), "box/cylinder");
+  solids += cylinder;
+  const auto of_union = BS::simulate_range_scan(object, BS::default_camera_for(object));
+  const auto of_solids = BS::simulate_range_scan(solids, BS::default_camera_for(solids));
+  BS_CHECK(of_union.size() == of_solids.size() && of_union.size() > 10000,
+           "box/cylinder: " << of_union.size() << " samples of the union, " << of_solids.size() << " of the two solids");
+  double farthest = 0.;
+  for(std::size_t i = 0; i < (std::min)(of_union.size(), of_solids.size()); ++i)
+    farthest = (std::max)(farthest, std::sqrt(CGAL::squared_distance(of_union[i].point, of_solids[i].point)));
+  BS_CHECK(farthest <= 1e-12, "box/cylinder: the two solids' samples are up to " << farthest << " from the union's");
+  report("box_cylinder_solids", before);
+}
+
 void test_bad_cad_parameters()
 {
   const int before = failures();
@@ -1084,6 +1107,7 @@ int main()
     test_partial_files_on_signals(dir);
   }
   test_cad_objects();
+  test_box_cylinder_solids_scan_like_the_union();
   test_bad_cad_parameters();
 #ifdef BLENDED_SCAN_EXE
   {
