@@ -75,7 +75,7 @@ void test_fit_among_strays(std::size_t inliers, std::size_t strays, double box_f
 // scan is of the box and the cylinder as two solids, not of their union
 // (make_box_cylinder(), whose Boolean operation was a seventh of this
 // program's compilation): the surfaces a ray meets first are the same, and so
-// is the camera (the bounding box is the same). One
+// is the camera (the bounding box is the same), as test_scanning checks. One
 // superquadric holds it; the robust default must fit it whole. With the
 // full fits' noise ceiling in the rough fits of the search
 // (candidate_noise_ceiling 0.02), none of them reached that basin: the fit
