@@ -225,6 +225,18 @@ inline std::pair<CAD_mesh, CAD_mesh> box_cylinder_solids(const Box_cylinder_para
                              p.cylinder_height + sink, p.segments, outer_turn)};
 }
 
+// The two solids of box_cylinder_solids() in one mesh, overlapping, not
+// united: for a ray scan it stands in for make_box_cylinder() without
+// compiling the corefinement, since every ray meets the same surface first
+// and the bounding box (so the default camera) is the same (test_scanning
+// checks both).
+inline CAD_mesh box_cylinder_overlapping_solids(const Box_cylinder_parameters& p, const std::string& who)
+{
+  auto [box, cylinder] = box_cylinder_solids(p, who);
+  box += cylinder;
+  return box;
+}
+
 } // namespace internal
 } // namespace Blended_shapes
 } // namespace CGAL
