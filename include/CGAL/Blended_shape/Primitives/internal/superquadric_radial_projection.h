@@ -43,13 +43,13 @@ struct Superquadric_radial_projection
   {
     scale = 1. / v.cwiseAbs().maxCoeff();
     u = scale * v;
-    X = std::pow(std::abs(u.x()), 2. / e2);
-    Y = std::pow(std::abs(u.y()), 2. / e2);
+    X = pow_unless_one(std::abs(u.x()), 2. / e2);
+    Y = pow_unless_one(std::abs(u.y()), 2. / e2);
     w = X + Y;
-    P = (w > 0.) ? std::pow(w, e2 / e1) : 0.;
-    Z = std::pow(std::abs(u.z()), 2. / e1);
+    P = (w > 0.) ? pow_unless_one(w, e2 / e1) : 0.;
+    Z = pow_unless_one(std::abs(u.z()), 2. / e1);
     H = P + Z;
-    r = std::pow(H, -0.5 * e1);
+    r = pow_unless_one(H, -0.5 * e1);
   }
 
   // The point on the unit superquadric.
@@ -106,6 +106,12 @@ struct Superquadric_radial_projection
 
 private:
   static constexpr double min_normal_power = 1e-290; // well above the subnormals
+
+  // std::pow(b, e), without the call where b is 1: the largest component of
+  // u is 1 in most projections (and w is 1 where it is ux or uy and the other
+  // is 0), and glibc's pow() computes its logarithm and exponential even
+  // there. The same value, bit for bit.
+  static double pow_unless_one(double b, double e) { return b == 1. ? 1. : std::pow(b, e); }
 
   // w^(e2/e1 - 1) |c|^(2/e2 - 1) sign(c), from the sum of the logarithms:
   // with |c|^(2/e2) <= w the sum is at most (2/e1 - 1) ln|c| + (e2/e1 - 1)^+ ln 2,
