@@ -71,7 +71,6 @@ inline void check_solid(const CAD_mesh& m, const std::string& who, int genus)
 /// genus stated. Boxes are centred on the z axis and stand on z = 0.
 /// @{
 
-
 /// \ingroup PkgBlendedShapeScanning
 /// Box plus cylinder on its top centre: genus 0.
 /// \throws std::invalid_argument if a size is not positive, or the cylinder does not fit on the box.
